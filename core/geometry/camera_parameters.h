@@ -20,7 +20,7 @@ struct PinholeRadtanParameters {
   std::array<double, 5> distortion{0.0, 0.0, 0.0, 0.0, 0.0};
 };
 
-// Push-broom line camera of DATASET.md: x = x_U / z_U,
+// Push-broom line camera of docs/SURVEY_FORMAT.md: x = x_U / z_U,
 // x_d = x (1 + k1 x^2 + k2 x^4), u = f x_d + cx; the scan line is y_U / z_U = 0.
 struct PushbroomParameters {
   int samples = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// GeodeticPoint: a position on WGS-84 as the INS reports it (DATASET.md):
+// GeodeticPoint: a position on WGS-84 as the INS reports it (docs/SURVEY_FORMAT.md):
 // latitude and longitude in degrees and depth in metres, positive down, i.e.
 // the geodetic point (lat, lon, h = -depth).
 

@@ -1,5 +1,5 @@
 #pragma once
-// LocalNedFrame: the world frame W of DATASET.md, the North-East-Down plane
+// LocalNedFrame: the world frame W of docs/SURVEY_FORMAT.md, the North-East-Down plane
 // tangent to WGS-84 at a geodetic origin.
 //
 // GeographicLib's LocalCartesian does the ellipsoid maths (geodetic ->

@@ -1,6 +1,6 @@
 #pragma once
 // PinholeRadtanCamera: OpenCV's pinhole model with radial-tangential
-// distortion (the RGB camera C of DATASET.md; x right, y down, z forward).
+// distortion (the RGB camera C of docs/SURVEY_FORMAT.md; x right, y down, z forward).
 //
 //   x = X/Z, y = Y/Z, r2 = x^2 + y^2
 //   radial = 1 + k1 r2 + k2 r2^2 + k3 r2^3

@@ -1,5 +1,5 @@
 #pragma once
-// PushbroomCamera: the UHI line camera of DATASET.md, in its frame U (z the
+// PushbroomCamera: the UHI line camera of docs/SURVEY_FORMAT.md, in its frame U (z the
 // optical axis, x along the sensor line, y across it).
 //
 //   x = x_U / z_U,   x_d = x (1 + k1 x^2 + k2 x^4),   u = f x_d + cx

@@ -1,6 +1,6 @@
 #pragma once
 // UtmProjection: UTM coordinates in the zone and hemisphere of a survey's
-// origin, for map products (DATASET.md "Rasters with a map position").
+// origin, for map products (docs/SURVEY_FORMAT.md "Rasters with a map position").
 //
 // GeographicLib's UTMUPS does the projection. Every point is projected in the
 // ORIGIN's zone and hemisphere (GeographicLib extends a zone a few degrees

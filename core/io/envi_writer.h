@@ -1,0 +1,71 @@
+#pragma once
+// EnviWriter: writes an ENVI cube line by line (lines in order), converting
+// band-major float lines (in[b * samples + s], as EnviReader returns them)
+// to the header's data type, byte order and interleave.
+//
+// Files: for `dir/cube.hdr` the data file is `dir/cube.raw`. While writing,
+// the data goes to `cube.raw.partial`; finish() renames it to `cube.raw` and
+// then writes `cube.hdr` (itself atomically), so a header never describes an
+// incomplete data file. Destroying a writer without finish() removes the
+// partial file: an interrupted run leaves nothing that looks whole.
+//
+// Layout: BIL and BIP lines are contiguous blocks written in turn; BSQ writes
+// each band's row into that band's plane (pwrite), which is why BSQ needs the
+// line count up front. For BIL/BIP, `lines = 0` in the header means "count
+// the lines written" (finish() records the count). A header offset is
+// written as zero bytes before the data.
+//
+// Conversion (envi_sample_codec.h): integers are rounded and clamped, NaN
+// becomes 0. Header problems (non-positive samples/bands, list sizes not
+// matching bands, hdr path not ending in .hdr) are std::invalid_argument;
+// I/O failures are std::runtime_error naming the file; writing more lines
+// than the header has, or finish() with lines missing, is std::logic_error.
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/io/envi_header.h"
+
+namespace hsmap {
+
+class EnviWriter {
+ public:
+  EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header);
+  ~EnviWriter();
+  EnviWriter(const EnviWriter&) = delete;
+  EnviWriter& operator=(const EnviWriter&) = delete;
+
+  const EnviHeader& header() const { return header_; }
+  const std::filesystem::path& headerPath() const { return hdr_path_; }
+  const std::filesystem::path& dataPath() const { return data_path_; }
+  int linesWritten() const { return lines_written_; }
+
+  // One line, band-major: bands * samples floats.
+  void writeLine(const float* band_major_line);
+  // One line as a bands x samples matrix (row = band).
+  void writeLine(const Eigen::MatrixXf& line);
+
+  void finish();
+
+ private:
+  void writeAt(const std::byte* bytes, std::size_t size, std::size_t offset);
+  void abandon() noexcept;
+
+  std::filesystem::path hdr_path_;
+  std::filesystem::path data_path_;
+  std::filesystem::path partial_path_;
+  EnviHeader header_;
+  bool count_lines_ = false;  // header.lines == 0 on construction
+  int fd_ = -1;
+  bool swap_bytes_ = false;
+  std::size_t value_bytes_ = 0;
+  int lines_written_ = 0;
+  bool finished_ = false;
+  std::vector<std::byte> encoded_;
+  std::vector<float> pixel_major_;
+};
+
+}  // namespace hsmap

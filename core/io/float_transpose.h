@@ -1,0 +1,17 @@
+#pragma once
+// transposeFloats: dst(c, r) = src(r, c) for a rows x cols block of floats,
+// each matrix row-major with its own stride (in floats):
+//   dst[c * dst_stride + r] = src[r * src_stride + c].
+// Used to turn BIP pixels (pixel-major) into band-major lines and back.
+// Works in 4 x 4 blocks with SSE shuffles where available (a scalar
+// element-by-element transpose costs about as much as reading the cube), and
+// element by element for the edges and on other targets.
+
+#include <cstddef>
+
+namespace hsmap {
+
+void transposeFloats(const float* src, std::size_t rows, std::size_t cols, std::size_t src_stride, float* dst,
+                     std::size_t dst_stride);
+
+}  // namespace hsmap

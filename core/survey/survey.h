@@ -1,0 +1,82 @@
+#pragma once
+// Survey: a survey folder (docs/SURVEY_FORMAT.md) loaded and cross-validated, ready for
+// the pipelines. loadSurvey() is the one path by which real, synthetic and
+// third-party surveys enter the program.
+//
+// loadSurvey(folder) resolves every path of survey.yaml relative to `folder`
+// and checks, in this order (the first violation throws InputError naming
+// the file and the line or key):
+//   1. survey.yaml (survey_config.h: strict keys, types, ranges);
+//   2. the RGB frames: frames.csv rows and that every listed image exists, or
+//      that the video opens; the first frame's size equals rgb.camera's
+//      width x height (only the first image is decoded, to keep loading fast);
+//   3. the UHI cube: the ENVI header and the data file's size (EnviReader);
+//      its `samples` equals uhi.camera.samples; it has one wavelength per band
+//      (an error when absent: every hyperspectral product is labelled by
+//      wavelength, and guessing them would mislabel the science data);
+//      wavelengths are converted to nanometres (units "Nanometers", "nm" or
+//      absent = nm; "Micrometers", "um" = x1000; anything else is an error);
+//   4. uhi/lines.csv: one row per scan line of the cube, time-ordered;
+//   5. nav/ins.csv: time-ordered, finite fixes (at least one);
+//   6. time spans: the RGB span and the UHI span (recorded times + the
+//      survey's time_offset_s guess) must overlap the INS span — disjoint
+//      spans are an error (nothing could be geo-referenced); partial coverage
+//      is allowed and reported in `warnings` (those frames/lines lie outside
+//      the INS span and can only be extrapolated).
+// The optional truth/ folder (synthetic surveys) is detected and its
+// expected files listed; its readers come with the simulator.
+//
+// Nothing is loaded whole that can be large: images are decoded on demand
+// and the cube is streamed line by line through `cube`.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/io/envi_reader.h"
+#include "core/survey/csv_table.h"
+#include "core/survey/rgb_frame_source.h"
+#include "core/survey/survey_config.h"
+
+namespace hsmap {
+
+// What the optional truth/ folder holds (docs/SURVEY_FORMAT.md "Ground truth").
+struct TruthFolder {
+  bool present = false;
+  std::filesystem::path folder;            // <survey>/truth
+  std::vector<std::string> found_files;    // expected files that exist, e.g. "rgb_poses.csv"
+  std::vector<std::string> missing_files;  // expected files that do not
+};
+
+struct Survey {
+  std::filesystem::path folder;
+  SurveyConfig config;
+
+  // Resolved paths (folder / what survey.yaml says).
+  std::filesystem::path config_path;
+  std::filesystem::path cube_header_path;
+  std::filesystem::path lines_path;
+  std::filesystem::path ins_path;
+
+  RgbFrameSource rgb;
+  std::unique_ptr<EnviReader> cube;    // open, validated; streams scan lines
+  std::vector<double> wavelengths_nm;  // one per band, from the ENVI header
+  std::vector<double> line_times;      // recorded time of scan line i (without d)
+  InsTable ins;
+
+  // W's origin: survey.yaml's `origin`, or the first INS fix.
+  GeodeticPoint origin;
+  bool origin_from_config = false;
+
+  TruthFolder truth;
+  // Non-fatal findings of the checks above (e.g. partial INS coverage).
+  std::vector<std::string> warnings;
+};
+
+Survey loadSurvey(const std::filesystem::path& folder);
+
+// The files truth/ is expected to hold (docs/SURVEY_FORMAT.md).
+const std::vector<std::string>& expectedTruthFiles();
+
+}  // namespace hsmap

@@ -1,0 +1,132 @@
+#pragma once
+// SurveyConfig: the contents of a survey folder's survey.yaml (docs/SURVEY_FORMAT.md),
+// read with strict validation and written back so that it reads identically.
+//
+// Keys, types, ranges and defaults (a key marked "optional" may be absent):
+//
+//   format: hsmap-survey/1                   required, exactly this text
+//   name: <text>                             required, non-empty
+//   rgb:
+//     frames: <path>                         exactly one of `frames` or `video`
+//     video: <path>                          a video file read with OpenCV;
+//     start_time: <s>                          with `video` only, then required (finite)
+//     fps: <Hz>                                with `video` only, then required (> 0)
+//     camera:
+//       model: pinhole-radtan                required, the only RGB model
+//       width, height: <px>                  required integers > 0
+//       fx, fy: <px>                         required > 0
+//       cx, cy: <px>                         required, finite
+//       distortion: [k1, k2, p1, p2, k3]     optional, 5 numbers; default zeros
+//   uhi:
+//     cube: <path to the ENVI .hdr>          required
+//     lines: <path>                          required
+//     camera:
+//       model: pushbroom                     required, the only UHI model
+//       samples: <px>                        required integer > 0
+//       f: <px>                              required > 0
+//       cx: <px>                             required, finite
+//       distortion: [k1, k2]                 optional, 2 numbers; default zeros
+//     extrinsic:                             required (T_C_U, the CAD guess)
+//       rotation_wxyz: [w, x, y, z]          required (see quaternions below)
+//       translation_m: [x, y, z]             required
+//       sigma_rotation_deg: <deg>            optional > 0; default 2.0
+//       sigma_translation_m: <m>             optional > 0; default 0.05
+//     time_offset_s: <s>                     optional, finite; default 0.0
+//     time_offset_sigma_s: <s>               optional > 0; default 0.05
+//   ins:
+//     file: <path>                           required
+//     camera_in_body:                        required (T_B_C)
+//       rotation_wxyz: [w, x, y, z]          required
+//       translation_m: [x, y, z]             required
+//     sigma_horizontal_m: <m>                optional > 0; default 0.5
+//     sigma_depth_m: <m>                     optional > 0; default 0.05
+//     sigma_attitude_deg: [roll, pitch, heading]  optional, each > 0; default [0.05, 0.05, 0.2]
+//   origin: {lat, lon, depth}                optional; all three required when given;
+//                                            lat in [-90, 90], lon in [-180, 180], depth finite.
+//                                            Absent: W's origin is the first INS fix.
+//
+// The sigma defaults are those of a typical survey-grade INS and of a
+// CAD-drawing extrinsic (docs/SURVEY_FORMAT.md's example values): loose enough not to
+// bias the estimate, tight enough to fix the gauge.
+//
+// Quaternions (`rotation_wxyz`) are Hamilton, given as w x y z. A quaternion
+// whose norm differs from 1 by at most 1e-3 is normalised (hand-typed values
+// such as 0.7071 are accepted); a larger deviation is an error, because it
+// means the four numbers are not a rotation (or are in the wrong order). A
+// quaternion already of unit norm to double precision is kept bit-exactly, so
+// writeSurveyConfig -> readSurveyConfig is an identity.
+//
+// Paths are stored as written (relative to the survey folder, '/'-separated);
+// loadSurvey (survey.h) resolves them.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/geometry/camera_parameters.h"
+#include "core/geometry/geodetic_point.h"
+
+namespace hsmap {
+
+// A rigid transform T_A_B as written in YAML: p_A = rotation * p_B + translation_m.
+struct RigidTransformConfig {
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // Hamilton, unit norm
+  Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();
+};
+
+struct RgbVideoConfig {
+  std::filesystem::path video;  // relative to the survey folder
+  double start_time = 0.0;      // time of frame 0, seconds on the shared clock
+  double fps = 0.0;             // frame i is at start_time + i / fps
+};
+
+struct RgbConfig {
+  std::filesystem::path frames;         // frames.csv; empty when `video` is set
+  std::optional<RgbVideoConfig> video;  // set instead of `frames`
+  PinholeRadtanParameters camera;
+};
+
+struct UhiConfig {
+  std::filesystem::path cube;   // ENVI header (.hdr)
+  std::filesystem::path lines;  // lines.csv
+  PushbroomParameters camera;
+  RigidTransformConfig T_C_U;  // extrinsic guess: UHI frame U in RGB camera frame C
+  double sigma_rotation_deg = 2.0;
+  double sigma_translation_m = 0.05;
+  double time_offset_s = 0.0;  // d: true UHI time = recorded time + d (initial guess)
+  double time_offset_sigma_s = 0.05;
+};
+
+struct InsConfig {
+  std::filesystem::path file;  // ins.csv
+  RigidTransformConfig T_B_C;  // RGB camera C in the INS body B
+  double sigma_horizontal_m = 0.5;
+  double sigma_depth_m = 0.05;
+  std::array<double, 3> sigma_attitude_deg{0.05, 0.05, 0.2};  // roll, pitch, heading
+};
+
+struct SurveyConfig {
+  static constexpr const char* kFormat = "hsmap-survey/1";
+  std::string name;
+  RgbConfig rgb;
+  UhiConfig uhi;
+  InsConfig ins;
+  // The geodetic point at which W (local NED) is tangent; absent: the first INS fix.
+  std::optional<GeodeticPoint> origin;
+};
+
+// Reads and validates `path` (see the table above). Throws InputError naming
+// `path`, the line and the dotted key.
+SurveyConfig readSurveyConfig(const std::filesystem::path& path);
+
+// Writes `config` to `path` atomically (a .partial file renamed when complete).
+// Numbers are written in shortest round-trip form; optional keys are always
+// written (with their values), so the file documents every setting.
+// Throws std::invalid_argument if `config` would not pass readSurveyConfig's
+// checks (e.g. both or neither of rgb.frames and rgb.video).
+void writeSurveyConfig(const std::filesystem::path& path, const SurveyConfig& config);
+
+}  // namespace hsmap

@@ -1,0 +1,147 @@
+#include "core/survey/survey_summary.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <ostream>
+
+#include "core/io/envi_header.h"
+
+namespace hsmap {
+namespace {
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+void printStream(std::ostream& out, const char* label, const char* unit, const StreamTiming& s) {
+  out << "  " << label << ": " << s.count << " " << unit << ", t = [" << fixed(s.first_t, 6) << ", "
+      << fixed(s.last_t, 6) << "] s (" << fixed(s.last_t - s.first_t, 3) << " s)";
+  if (s.count >= 2) out << ", " << fixed(s.rate_hz, 3) << " Hz";
+  out << "\n";
+  if (s.gap_count == 0) {
+    out << "    gaps: none (no step longer than 1.5x the median " << fixed(s.median_step_s, 6)
+        << " s)\n";
+    return;
+  }
+  out << "    gaps: " << s.gap_count << " step(s) longer than 1.5x the median "
+      << fixed(s.median_step_s, 6) << " s";
+  out << (s.gap_count > s.first_gaps.size() ? "; the first:\n" : ":\n");
+  for (const TimeGap& gap : s.first_gaps) {
+    out << "      " << fixed(gap.t_before, 6) << " -> " << fixed(gap.t_after, 6) << " s (step "
+        << fixed(gap.t_after - gap.t_before, 6) << " s, before entry " << gap.index << ")\n";
+  }
+}
+
+}  // namespace
+
+StreamTiming analyzeTimeStamps(const std::vector<double>& times, std::size_t max_listed_gaps) {
+  StreamTiming timing;
+  timing.count = times.size();
+  if (times.empty()) return timing;
+  timing.first_t = times.front();
+  timing.last_t = times.back();
+  if (times.size() < 2) return timing;
+  std::vector<double> steps(times.size() - 1);
+  for (std::size_t i = 1; i < times.size(); ++i) steps[i - 1] = times[i] - times[i - 1];
+  std::vector<double> sorted = steps;
+  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), middle, sorted.end());
+  timing.median_step_s = *middle;
+  if (sorted.size() % 2 == 0) {
+    // Even count: the mean of the two middle steps.
+    const double lower = *std::max_element(sorted.begin(), middle);
+    timing.median_step_s = 0.5 * (lower + *middle);
+  }
+  timing.rate_hz = timing.median_step_s > 0.0 ? 1.0 / timing.median_step_s : 0.0;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    if (steps[i] > 1.5 * timing.median_step_s) {
+      ++timing.gap_count;
+      if (timing.first_gaps.size() < max_listed_gaps) {
+        timing.first_gaps.push_back({i + 1, times[i], times[i + 1]});
+      }
+    }
+  }
+  return timing;
+}
+
+SurveySummary summarizeSurvey(const Survey& survey) {
+  SurveySummary summary;
+  const SurveyConfig& config = survey.config;
+  summary.name = config.name;
+  summary.folder = survey.folder;
+  summary.rgb_source =
+      (survey.rgb.isVideo() ? "video " : "image list ") + survey.rgb.sourcePath().string();
+  summary.rgb_camera = config.rgb.camera;
+  summary.rgb = analyzeTimeStamps(survey.rgb.times());
+
+  const EnviHeader& header = survey.cube->header();
+  summary.uhi_camera = config.uhi.camera;
+  summary.uhi_samples = header.samples;
+  summary.uhi_lines = header.lines;
+  summary.uhi_bands = header.bands;
+  summary.uhi_data_type = toString(header.data_type);
+  summary.uhi_interleave = toString(header.interleave);
+  summary.wavelength_min_nm =
+      *std::min_element(survey.wavelengths_nm.begin(), survey.wavelengths_nm.end());
+  summary.wavelength_max_nm =
+      *std::max_element(survey.wavelengths_nm.begin(), survey.wavelengths_nm.end());
+  summary.uhi_time_offset_s = config.uhi.time_offset_s;
+  summary.uhi = analyzeTimeStamps(survey.line_times);
+
+  summary.ins_has_attitude = survey.ins.has_attitude;
+  std::vector<double> ins_times;
+  ins_times.reserve(survey.ins.fixes.size());
+  for (const InsFix& fix : survey.ins.fixes) ins_times.push_back(fix.t);
+  summary.ins = analyzeTimeStamps(ins_times);
+
+  summary.origin = survey.origin;
+  summary.origin_from_config = survey.origin_from_config;
+  summary.truth = survey.truth;
+  summary.warnings = survey.warnings;
+  return summary;
+}
+
+void printSurveySummary(std::ostream& out, const SurveySummary& s) {
+  out << "survey '" << s.name << "' (" << s.folder.string() << "): valid\n";
+  out << "sensors:\n";
+  const PinholeRadtanParameters& c = s.rgb_camera;
+  out << "  RGB: pinhole-radtan " << c.width << "x" << c.height << ", fx " << fixed(c.fx, 2)
+      << ", fy " << fixed(c.fy, 2) << ", cx " << fixed(c.cx, 2) << ", cy " << fixed(c.cy, 2) << "; "
+      << s.rgb_source << "\n";
+  out << "  UHI: pushbroom, " << s.uhi_samples << " samples x " << s.uhi_bands << " bands, "
+      << s.uhi_lines << " lines, " << s.uhi_data_type << ", " << s.uhi_interleave << ", f "
+      << fixed(s.uhi_camera.f, 2) << ", cx " << fixed(s.uhi_camera.cx, 2) << "\n";
+  out << "       wavelengths " << fixed(s.wavelength_min_nm, 1) << " - "
+      << fixed(s.wavelength_max_nm, 1) << " nm; time offset guess " << fixed(s.uhi_time_offset_s, 6)
+      << " s\n";
+  out << "  INS: " << (s.ins_has_attitude ? "position and attitude" : "position only (no attitude)")
+      << "\n";
+  out << "streams:\n";
+  printStream(out, "RGB frames", "frames", s.rgb);
+  printStream(out, "UHI lines", "lines", s.uhi);
+  printStream(out, "INS fixes", "fixes", s.ins);
+  out << "origin: lat " << fixed(s.origin.lat_deg, 8) << ", lon " << fixed(s.origin.lon_deg, 8)
+      << ", depth " << fixed(s.origin.depth_m, 3) << " m ("
+      << (s.origin_from_config ? "given in survey.yaml" : "first INS fix") << ")\n";
+  if (!s.truth.present) {
+    out << "truth: none\n";
+  } else {
+    out << "truth: present (" << s.truth.found_files.size() << " of "
+        << s.truth.found_files.size() + s.truth.missing_files.size() << " expected files";
+    if (!s.truth.missing_files.empty()) {
+      out << "; missing:";
+      for (const auto& name : s.truth.missing_files) out << " " << name;
+    }
+    out << ")\n";
+  }
+  if (s.warnings.empty()) {
+    out << "warnings: none\n";
+  } else {
+    out << "warnings:\n";
+    for (const auto& warning : s.warnings) out << "  - " << warning << "\n";
+  }
+}
+
+}  // namespace hsmap

@@ -1,0 +1,30 @@
+#include "core/io/float_transpose.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace hsmap {
+namespace {
+
+// Every shape around the 4 x 4 blocks, with strides wider than the block.
+TEST(FloatTranspose, MatchesTheDefinitionForEveryShape) {
+  for (std::size_t rows = 1; rows <= 9; ++rows) {
+    for (std::size_t cols = 1; cols <= 9; ++cols) {
+      const std::size_t src_stride = cols + 2, dst_stride = rows + 3;
+      std::vector<float> src(rows * src_stride);
+      for (std::size_t i = 0; i < src.size(); ++i) src[i] = static_cast<float>(i) + 0.5f;
+      std::vector<float> dst(cols * dst_stride, -1.0f);
+      transposeFloats(src.data(), rows, cols, src_stride, dst.data(), dst_stride);
+      for (std::size_t c = 0; c < cols; ++c) {
+        for (std::size_t r = 0; r < dst_stride; ++r) {
+          const float expected = r < rows ? src[r * src_stride + c] : -1.0f;  // padding untouched
+          ASSERT_EQ(dst[c * dst_stride + r], expected) << rows << "x" << cols << " at (" << c << ", " << r << ")";
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hsmap

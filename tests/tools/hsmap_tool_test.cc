@@ -1,0 +1,197 @@
+// Runs the built `hsmap` executable (HSMAP_TOOL_PATH) as a user would and
+// checks exit statuses, stdout and stderr.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+
+#include "pipelines/sample_survey.h"
+#include "tests/core/survey/temp_folder.h"
+
+namespace hsmap {
+namespace {
+
+using testing::readText;
+using testing::replaceInFile;
+using testing::TempFolder;
+using testing::writeText;
+
+struct RunResult {
+  int exit_status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string quoted(const std::string& text) {
+  std::string result = "'";
+  for (char c : text) result += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return result + "'";
+}
+
+// Runs `hsmap <arguments>` with stdout and stderr captured in files of `temp`.
+RunResult runHsmap(const TempFolder& temp, const std::string& arguments) {
+  const auto out = temp / "stdout.txt";
+  const auto err = temp / "stderr.txt";
+  const std::string command = quoted(HSMAP_TOOL_PATH) + " " + arguments + " >" +
+                              quoted(out.string()) + " 2>" + quoted(err.string());
+  const int status = std::system(command.c_str());
+  RunResult result;
+  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = readText(out);
+  result.err = readText(err);
+  return result;
+}
+
+// The built-in sample survey, written once for this program.
+const std::filesystem::path& pristineSample() {
+  static const TempFolder folder("tool-pristine");
+  static const std::filesystem::path sample = [] {
+    writeSampleSurvey(folder / "sample");
+    return folder / "sample";
+  }();
+  return sample;
+}
+
+class HsmapToolTest : public ::testing::Test {
+ protected:
+  TempFolder temp_{"tool"};
+  std::filesystem::path survey_ = temp_ / "survey";
+};
+
+TEST_F(HsmapToolTest, VersionAndHelp) {
+  const RunResult version = runHsmap(temp_, "--version");
+  EXPECT_EQ(version.exit_status, 0);
+  EXPECT_EQ(version.out.rfind("hsmap ", 0), 0u) << version.out;
+
+  const RunResult help = runHsmap(temp_, "--help");
+  EXPECT_EQ(help.exit_status, 0);
+  EXPECT_NE(help.out.find("inspect"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("sample"), std::string::npos) << help.out;
+
+  const RunResult sample_help = runHsmap(temp_, "sample --help");
+  EXPECT_EQ(sample_help.exit_status, 0);
+  EXPECT_NE(sample_help.out.find("--out"), std::string::npos) << sample_help.out;
+  EXPECT_NE(sample_help.out.find("--force"), std::string::npos) << sample_help.out;
+
+  const RunResult inspect_help = runHsmap(temp_, "inspect --help");
+  EXPECT_EQ(inspect_help.exit_status, 0);
+  EXPECT_NE(inspect_help.out.find("SURVEY"), std::string::npos) << inspect_help.out;
+}
+
+TEST_F(HsmapToolTest, NoSubcommandIsAUsageError) {
+  const RunResult result = runHsmap(temp_, "");
+  EXPECT_EQ(result.exit_status, 1);
+  EXPECT_FALSE(result.err.empty());
+}
+
+TEST_F(HsmapToolTest, SampleThenInspectSucceeds) {
+  const RunResult sample = runHsmap(temp_, "sample --out " + quoted(survey_.string()));
+  ASSERT_EQ(sample.exit_status, 0) << sample.err;
+  EXPECT_NE(sample.out.find("wrote the sample survey"), std::string::npos) << sample.out;
+  EXPECT_NE(sample.out.find("75 PNG frames of 160x120"), std::string::npos) << sample.out;
+  EXPECT_TRUE(std::filesystem::exists(survey_ / "survey.yaml"));
+
+  const RunResult inspect = runHsmap(temp_, "inspect " + quoted(survey_.string()));
+  EXPECT_EQ(inspect.exit_status, 0) << inspect.err;
+  EXPECT_TRUE(inspect.err.empty()) << inspect.err;
+  for (const char* expected :
+       {"survey 'hsmap-sample'", "RGB frames: 75 frames", "UHI lines: 90 lines",
+        "INS fixes: 6 fixes", "wavelengths 400.0 - 800.0 nm", "warnings: none"}) {
+    EXPECT_NE(inspect.out.find(expected), std::string::npos) << "missing '" << expected << "' in\n"
+                                                             << inspect.out;
+  }
+}
+
+TEST_F(HsmapToolTest, SampleRefusesANonEmptyFolderUnlessForced) {
+  writeText(survey_ / "precious.txt", "keep me");
+  const RunResult refused = runHsmap(temp_, "sample --out " + quoted(survey_.string()));
+  EXPECT_EQ(refused.exit_status, 1);
+  EXPECT_EQ(refused.err,
+            "error: " + survey_.string() +
+                " is not empty; pass --force to replace it (its contents will be deleted)\n");
+  EXPECT_EQ(readText(survey_ / "precious.txt"), "keep me");
+  EXPECT_FALSE(std::filesystem::exists(survey_ / "survey.yaml"));
+
+  const RunResult forced = runHsmap(temp_, "sample --force --out " + quoted(survey_.string()));
+  EXPECT_EQ(forced.exit_status, 0) << forced.err;
+  EXPECT_TRUE(std::filesystem::exists(survey_ / "survey.yaml"));
+  EXPECT_FALSE(std::filesystem::exists(survey_ / "precious.txt"));
+
+  // An empty folder is fine without --force.
+  std::filesystem::create_directories(temp_ / "empty");
+  EXPECT_EQ(runHsmap(temp_, "sample --out " + quoted((temp_ / "empty").string())).exit_status, 0);
+}
+
+// Each malformed survey: exit status 2 and exactly one error line on stderr
+// that names the file and the line or key.
+class HsmapInspectErrorTest : public HsmapToolTest {
+ protected:
+  void SetUp() override { testing::copyFolder(pristineSample(), survey_); }
+
+  void expectInspectError(const std::string& expected_message) {
+    const RunResult result = runHsmap(temp_, "inspect " + quoted(survey_.string()));
+    EXPECT_EQ(result.exit_status, 2);
+    EXPECT_EQ(result.err, "error: " + expected_message + "\n");
+    EXPECT_TRUE(result.out.empty()) << result.out;
+  }
+};
+
+TEST_F(HsmapInspectErrorTest, MissingFolder) {
+  std::filesystem::remove_all(survey_);
+  expectInspectError(survey_.string() +
+                     ": survey folder not found (expected a folder holding survey.yaml)");
+}
+
+TEST_F(HsmapInspectErrorTest, UnknownYamlKey) {
+  const auto yaml = survey_ / "survey.yaml";
+  replaceInFile(yaml, "name: hsmap-sample\n", "name: hsmap-sample\nnmae: typo\n");
+  const std::string text = readText(yaml);
+  const auto line =
+      1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find("nmae")), '\n');
+  expectInspectError(
+      yaml.string() + ":line " + std::to_string(line) +
+      ", key nmae: unknown key; expected one of: format, name, rgb, uhi, ins, origin");
+}
+
+TEST_F(HsmapInspectErrorTest, NanInTheIns) {
+  const auto ins = survey_ / "nav/ins.csv";
+  std::string text = readText(ins);
+  const auto row = text.find('\n') + 1;  // first data row, line 2
+  const auto depth_start = [&] {
+    std::size_t at = row;
+    for (int comma = 0; comma < 3; ++comma) at = text.find(',', at) + 1;
+    return at;
+  }();
+  text.replace(depth_start, text.find(',', depth_start) - depth_start, "NaN");
+  writeText(ins, text);
+  expectInspectError(ins.string() + ":line 2: column 'depth': expected a finite number, got 'NaN'");
+}
+
+TEST_F(HsmapInspectErrorTest, MissingFrameFile) {
+  std::filesystem::remove(survey_ / "rgb/frame_0074.png");
+  expectInspectError(
+      (survey_ / "rgb/frames.csv").string() +
+      ":line 76: column 'file': image 'frame_0074.png' not found (expected the file " +
+      (survey_ / "rgb/frame_0074.png").string() + ")");
+}
+
+TEST_F(HsmapInspectErrorTest, LinesCsvCountDiffersFromTheCube) {
+  const auto lines = survey_ / "uhi/lines.csv";
+  writeText(lines, readText(lines) + "90,36003.5\n");
+  expectInspectError(lines.string() + ":line 92: row for scan line 90, but the cube " +
+                     (survey_ / "uhi/cube.hdr").string() +
+                     " has 90 lines; expected one row per scan line (91 rows given)");
+}
+
+TEST_F(HsmapInspectErrorTest, TruncatedCubeNamesTheDataFile) {
+  const auto raw = survey_ / "uhi/cube.raw";
+  std::filesystem::resize_file(raw, 1000);
+  const RunResult result = runHsmap(temp_, "inspect " + quoted(survey_.string()));
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_EQ(result.err.rfind("error: " + raw.string() + ":", 0), 0u) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+}
+
+}  // namespace
+}  // namespace hsmap
