@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config time
   libeigen3-dev libceres-dev libsuitesparse-dev
   libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev
   libtbb-dev libcli11-dev libyaml-cpp-dev

@@ -10,6 +10,7 @@
 #include "core/io/atomic_file.h"
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
+#include "core/util/text_file.h"
 
 namespace hsmap {
 namespace {
@@ -37,19 +38,6 @@ std::vector<std::string> splitCells(std::string_view line) {
   return cells;
 }
 
-std::string readWholeFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    const int error = errno;
-    throw InputError(file, "",
-                     std::string("cannot open the file: ") +
-                         (error != 0 ? std::strerror(error) : "unknown error"));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(file, "", "read error");
-  return text.str();
-}
 
 // Splits into lines, dropping a trailing '\r' of each (CRLF files).
 std::vector<std::string_view> splitLines(std::string_view text) {
@@ -121,7 +109,7 @@ CsvTable readCsvTable(const std::filesystem::path& file,
     expected_headers += '\'';
   }
 
-  const std::string text = readWholeFile(file);
+  const std::string text = readTextFile(file);
   std::string_view body = text;
   if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);  // UTF-8 byte-order mark
   std::vector<std::string_view> lines = splitLines(body);

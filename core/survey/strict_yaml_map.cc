@@ -9,6 +9,7 @@
 
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
+#include "core/util/text_file.h"
 
 namespace hsmap {
 namespace {
@@ -46,17 +47,9 @@ std::string describeYamlNode(const YAML::Node& node) {
 }
 
 YAML::Node loadYamlFile(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    const int error = errno;
-    throw InputError(file, "",
-                     std::string("cannot open the file: ") +
-                         (error != 0 ? std::strerror(error) : "unknown error"));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = readTextFile(file);
   try {
-    return YAML::Load(text.str());
+    return YAML::Load(text);
   } catch (const YAML::Exception& e) {  // ParserException and the rest carry a mark
     throw InputError(file, InputError::atLine(e.mark.is_null() ? 1 : e.mark.line + 1),
                      "YAML syntax error: " + e.msg);
