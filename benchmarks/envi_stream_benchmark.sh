@@ -11,6 +11,8 @@
 # mmap) 3 times each under /usr/bin/time -v, and deletes the cube. Prints one
 # table row per interleave and mode: median wall time of cat, median wall
 # time of the reader, their ratio, and the reader's peak RSS (max of the runs).
+# The per-run lines also give CPU time (user + sys), which varies less than
+# wall time when other work shares the machine.
 #
 # The tool is found as $HSMAP_ENVI_STREAM_TOOL, else BUILD_DIR (argument 2 or
 # $HSMAP_BUILD_DIR)/benchmarks/envi_stream_tool, else <repo>/build/benchmarks/.
@@ -45,6 +47,7 @@ trap cleanup EXIT
 
 # Seconds from GNU time's "Elapsed (wall clock) time (h:mm:ss or m:ss): 0:01.23".
 elapsed() { awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, p, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + p[i]; print s}' "$1"; }
+cpu_seconds() { awk -F': ' '/User time \(seconds\)|System time \(seconds\)/ {s += $2} END {print s}' "$1"; }
 max_rss_kb() { awk -F': ' '/Maximum resident set size/ {print $2}' "$1"; }
 median() { sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 
@@ -57,24 +60,29 @@ for interleave in bil bip bsq; do
   "$tool" write "$current.hdr" --samples 1920 --bands 211 --lines "$lines" --interleave "$interleave" --type 12
   cat "$current.raw" > /dev/null  # warm the page cache
   cat_times=()
+  cat_cpu=()
   for ((r = 0; r < runs; r++)); do
     /usr/bin/time -v cat "$current.raw" > /dev/null 2> "$log"
     cat_times+=("$(elapsed "$log")")
+    cat_cpu+=("$(cpu_seconds "$log")")
   done
   cat_median=$(printf '%s\n' "${cat_times[@]}" | median)
   for mode in buffered mapped; do
     reader_times=()
+    reader_cpu=()
     peak_kb=0
     for ((r = 0; r < runs; r++)); do
       /usr/bin/time -v "$tool" read "$current.hdr" --mode "$mode" > /dev/null 2> "$log"
       reader_times+=("$(elapsed "$log")")
+      reader_cpu+=("$(cpu_seconds "$log")")
       rss=$(max_rss_kb "$log")
       if ((rss > peak_kb)); then peak_kb=$rss; fi
     done
     reader_median=$(printf '%s\n' "${reader_times[@]}" | median)
     rows+=("$(awk -v il="$interleave" -v m="$mode" -v c="$cat_median" -v r="$reader_median" -v k="$peak_kb" \
       'BEGIN {printf "| %-10s | %-8s | %12.2f | %15.2f | %5.2f | %19.0f |", il, m, c, r, (c > 0 ? r / c : 0), k / 1024}')")
-    echo "$interleave $mode: cat ${cat_times[*]} s, reader ${reader_times[*]} s, peak RSS $((peak_kb / 1024)) MB"
+    echo "$interleave $mode: wall cat ${cat_times[*]} s, reader ${reader_times[*]} s;" \
+      "CPU (user+sys) cat ${cat_cpu[*]} s, reader ${reader_cpu[*]} s; peak RSS $((peak_kb / 1024)) MB"
   done
   rm -f "$current.hdr" "$current.raw"
   current=""

@@ -10,8 +10,8 @@
 //   bil: i = (l * B + b) * S + s      each line is B rows of S samples
 //   bip: i = (l * S + s) * B + b      each line is S pixels of B bands
 // readLine returns the line band-major (out[b * S + s]), i.e. as a B x S
-// matrix: BIL is converted straight through, BIP is transposed in cache-sized
-// tiles, BSQ gathers one row from each band plane.
+// matrix: BIL is converted straight through, BIP is converted and transposed
+// together (decodeSamplesTransposed), BSQ gathers one row from each band plane.
 //
 // Two ways to reach the bytes (EnviReadMode):
 // - buffered (default): pread into a reused window of consecutive lines,
@@ -21,8 +21,9 @@
 //   just that line. Memory stays at the window's size.
 // - mapped: a read-only memory map (MappedFile, MADV_SEQUENTIAL). When lines
 //   are read in increasing order the reader drops the pages behind the
-//   cursor (every ~16 MB; in each band plane for BSQ), because the pages of a
-//   file mapping count in the resident set for as long as they stay mapped.
+//   cursor every ~16 MB (for BSQ, whose cursor is in every band plane, all
+//   mapped pages), because the pages of a file mapping count in the resident
+//   set for as long as they stay mapped.
 // Both give identical results. Buffered is the default because it is several
 // times faster where touching fresh mapped pages is expensive (measured on
 // the project's virtual machine: docs/BENCHMARKS.md, "ENVI streaming read").

@@ -26,6 +26,15 @@ namespace hsmap {
 bool enviNeedsByteSwap(int byte_order);
 
 void decodeSamples(EnviDataType type, bool swap_bytes, const std::byte* src, float* dst, std::size_t n);
+
+// Decodes a pixel-major block (BIP: `pixels` runs of `bands` values) into
+// band-major rows: out[b * out_stride + p] = value of src[p * bands + b].
+// 16-bit types (the usual UHI data) convert and transpose in one pass over
+// 4 x 4 blocks with SSE2; other types convert a tile of pixels and then
+// transpose it (transposeFloats). Either way, only 16 output rows are written
+// at a time, so that the stores stay in few streams.
+void decodeSamplesTransposed(EnviDataType type, bool swap_bytes, const std::byte* src, std::size_t pixels,
+                             std::size_t bands, float* out, std::size_t out_stride);
 void encodeSamples(EnviDataType type, bool swap_bytes, const float* src, std::byte* dst, std::size_t n);
 
 }  // namespace hsmap

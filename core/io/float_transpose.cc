@@ -1,43 +1,57 @@
 #include "core/io/float_transpose.h"
 
+#include <algorithm>
+
 #if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
 namespace hsmap {
+namespace {
+
+// Columns per pass. Each pass writes only this many destination rows, which
+// the hardware prefetchers can follow; writing all rows at once (211 bands)
+// spreads the stores over too many streams. 16 measured fastest (8 and 32
+// are ~10% slower on 1920 x 211 lines).
+constexpr std::size_t kColumnBlock = 16;
+
+}  // namespace
 
 void transposeFloats(const float* src, std::size_t rows, std::size_t cols, std::size_t src_stride, float* dst,
                      std::size_t dst_stride) {
-  std::size_t r = 0;
+  for (std::size_t c0 = 0; c0 < cols; c0 += kColumnBlock) {
+    const std::size_t c1 = std::min(cols, c0 + kColumnBlock);
+    std::size_t r = 0;
 #if defined(__SSE__)
-  for (; r + 4 <= rows; r += 4) {
-    const float* s0 = src + r * src_stride;
-    const float* s1 = s0 + src_stride;
-    const float* s2 = s1 + src_stride;
-    const float* s3 = s2 + src_stride;
-    std::size_t c = 0;
-    for (; c + 4 <= cols; c += 4) {
-      __m128 a0 = _mm_loadu_ps(s0 + c);
-      __m128 a1 = _mm_loadu_ps(s1 + c);
-      __m128 a2 = _mm_loadu_ps(s2 + c);
-      __m128 a3 = _mm_loadu_ps(s3 + c);
-      _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
-      _mm_storeu_ps(dst + (c + 0) * dst_stride + r, a0);
-      _mm_storeu_ps(dst + (c + 1) * dst_stride + r, a1);
-      _mm_storeu_ps(dst + (c + 2) * dst_stride + r, a2);
-      _mm_storeu_ps(dst + (c + 3) * dst_stride + r, a3);
+    for (; r + 4 <= rows; r += 4) {
+      const float* s0 = src + r * src_stride;
+      const float* s1 = s0 + src_stride;
+      const float* s2 = s1 + src_stride;
+      const float* s3 = s2 + src_stride;
+      std::size_t c = c0;
+      for (; c + 4 <= c1; c += 4) {
+        __m128 a0 = _mm_loadu_ps(s0 + c);
+        __m128 a1 = _mm_loadu_ps(s1 + c);
+        __m128 a2 = _mm_loadu_ps(s2 + c);
+        __m128 a3 = _mm_loadu_ps(s3 + c);
+        _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
+        _mm_storeu_ps(dst + (c + 0) * dst_stride + r, a0);
+        _mm_storeu_ps(dst + (c + 1) * dst_stride + r, a1);
+        _mm_storeu_ps(dst + (c + 2) * dst_stride + r, a2);
+        _mm_storeu_ps(dst + (c + 3) * dst_stride + r, a3);
+      }
+      for (; c < c1; ++c) {
+        float* d = dst + c * dst_stride + r;
+        d[0] = s0[c];
+        d[1] = s1[c];
+        d[2] = s2[c];
+        d[3] = s3[c];
+      }
     }
-    for (; c < cols; ++c) {
-      float* d = dst + c * dst_stride + r;
-      d[0] = s0[c];
-      d[1] = s1[c];
-      d[2] = s2[c];
-      d[3] = s3[c];
-    }
-  }
 #endif
-  for (; r < rows; ++r) {
-    for (std::size_t c = 0; c < cols; ++c) dst[c * dst_stride + r] = src[r * src_stride + c];
+    for (; r < rows; ++r) {
+      for (std::size_t c = c0; c < c1; ++c) dst[c * dst_stride + r] = src[r * src_stride + c];
+    }
   }
 }
 

@@ -3,8 +3,9 @@
 // each matrix row-major with its own stride (in floats):
 //   dst[c * dst_stride + r] = src[r * src_stride + c].
 // Used to turn BIP pixels (pixel-major) into band-major lines and back.
-// Works in 4 x 4 blocks with SSE shuffles where available (a scalar
-// element-by-element transpose costs about as much as reading the cube), and
+// Works in passes of 16 source columns (so that only 16 destination rows are
+// written at a time), each in 4 x 4 blocks with SSE shuffles where available
+// (an element-by-element transpose costs more than reading the cube), and
 // element by element for the edges and on other targets.
 
 #include <cstddef>

@@ -74,5 +74,42 @@ TEST(EnviSampleCodec, DecodesUnalignedValues) {
   EXPECT_EQ(out[2], 2147483648.f);  // nearest float
 }
 
+// The fused 16-bit path and the tiled path for the other types must both
+// equal "decode, then transpose by definition", for shapes around the 4 x 4
+// blocks and the 16-band passes, in both byte orders.
+TEST(EnviSampleCodec, TransposedDecodingMatchesTheDefinition) {
+  const EnviDataType types[] = {EnviDataType::uint8,   EnviDataType::int16,   EnviDataType::int32,
+                                EnviDataType::float32, EnviDataType::float64, EnviDataType::uint16,
+                                EnviDataType::uint32};
+  for (const EnviDataType type : types) {
+    for (const bool swap : {false, true}) {
+      for (const std::size_t pixels : {1, 3, 4, 5, 9, 130}) {
+        for (const std::size_t bands : {1, 3, 4, 5, 16, 17, 21}) {
+          // Values that every type holds, negative ones for the signed types.
+          const bool is_signed = type == EnviDataType::int16 || type == EnviDataType::int32 ||
+                                 type == EnviDataType::float32 || type == EnviDataType::float64;
+          std::vector<float> values(pixels * bands);
+          for (std::size_t i = 0; i < values.size(); ++i) {
+            values[i] = static_cast<float>(i % 251) * (is_signed && i % 3 == 0 ? -1.0f : 1.0f);
+          }
+          std::vector<std::byte> stored(values.size() * bytesPerValue(type) + 1);
+          encodeSamples(type, swap, values.data(), stored.data() + 1, values.size());  // unaligned on purpose
+          const std::size_t stride = pixels + 2;
+          std::vector<float> out(bands * stride, -7.0f);
+          decodeSamplesTransposed(type, swap, stored.data() + 1, pixels, bands, out.data(), stride);
+          for (std::size_t b = 0; b < bands; ++b) {
+            for (std::size_t p = 0; p < stride; ++p) {
+              const float expected = p < pixels ? values[p * bands + b] : -7.0f;  // padding untouched
+              ASSERT_EQ(out[b * stride + p], expected)
+                  << toString(type) << (swap ? " swapped " : " ") << pixels << "x" << bands << " at band " << b
+                  << " pixel " << p;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hsmap

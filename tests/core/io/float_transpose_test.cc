@@ -7,10 +7,11 @@
 namespace hsmap {
 namespace {
 
-// Every shape around the 4 x 4 blocks, with strides wider than the block.
+// Every shape around the 4 x 4 blocks and the 16-column passes, with
+// strides wider than the block.
 TEST(FloatTranspose, MatchesTheDefinitionForEveryShape) {
-  for (std::size_t rows = 1; rows <= 9; ++rows) {
-    for (std::size_t cols = 1; cols <= 9; ++cols) {
+  for (std::size_t rows : {1, 2, 3, 4, 5, 7, 8, 9, 23}) {
+    for (std::size_t cols : {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 33, 211}) {
       const std::size_t src_stride = cols + 2, dst_stride = rows + 3;
       std::vector<float> src(rows * src_stride);
       for (std::size_t i = 0; i < src.size(); ++i) src[i] = static_cast<float>(i) + 0.5f;
