@@ -1,0 +1,68 @@
+#pragma once
+// Marginal covariances of chosen variables at the current estimate, through
+// ceres::Covariance.
+//
+// Under the Gauss-Newton approximation the covariance of all free variables
+// is (J^T J)^-1, J the Jacobian of the whitened (and, by default, robustified)
+// residuals in the TANGENT space of each variable. The marginal covariance of
+// a variable is its diagonal block of that inverse (not the inverse of its
+// own block of J^T J, which would ignore the correlations), and the joint
+// covariance of a few variables is the matching sub-matrix. Units and order:
+//   pose3   6x6 over the right perturbation xi = [rho; phi] of
+//           Se3Manifold (metres, radians; expressed in the pose's own frame,
+//           e.g. the body frame of T_W_B)
+//   point3  3x3 (metres^2), scalar 1x1, vector n x n (stored units)
+// A variable held constant has a zero covariance (and zero correlations).
+//
+// Rank deficiency. When J does not have full column rank the covariance is
+// undefined, almost always because the gauge is free (a graph with only
+// relative factors). The computation then throws CovarianceRankDeficient
+// telling the user to hold a pose constant or add absolute (INS / prior)
+// factors; see graph_problem.h, "Gauge".
+//
+// Cost: sparse QR (SuiteSparseQR) of the whole Jacobian, dominated by the
+// Jacobian's size, whatever few variables are asked for. dense_svd is only
+// for small problems (it forms the dense J^T J).
+
+#include <Eigen/Core>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/graph/key.h"
+#include "solvers/graph_problem.h"
+
+namespace hsmap {
+
+struct CovarianceOptions {
+  enum class Algorithm { sparse_qr, dense_svd };
+  Algorithm algorithm = Algorithm::sparse_qr;
+  // 0 means every hardware thread.
+  int num_threads = 0;
+  // Whether robust losses reweight the residuals, as in the solve.
+  bool apply_loss_function = true;
+  // dense_svd: the problem counts as rank deficient when the ratio of the
+  // smallest to the largest eigenvalue of J^T J is below this.
+  double min_reciprocal_condition_number = 1e-14;
+};
+
+// Thrown when the Jacobian is rank deficient (e.g. free gauge).
+class CovarianceRankDeficient : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Marginal covariance of each key (tangent space; see the header comment).
+// Throws std::invalid_argument for a key that is not a variable of the
+// problem, CovarianceRankDeficient when the covariance is undefined.
+std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
+                                                   const std::vector<Key>& keys,
+                                                   const CovarianceOptions& options = {});
+
+// Joint covariance of the keys, stacked in the given order (sum of their
+// tangent sizes, square). Same errors as marginalCovariances().
+Eigen::MatrixXd jointMarginalCovariance(GraphProblem& problem, const std::vector<Key>& keys,
+                                        const CovarianceOptions& options = {});
+
+}  // namespace hsmap
