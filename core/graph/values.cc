@@ -1,5 +1,6 @@
 #include "core/graph/values.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace hsmap {
@@ -44,7 +45,9 @@ void Values::insertVector(Key key, const Eigen::VectorXd& value) {
 }
 
 void Values::updatePose(Key key, const Eigen::Quaterniond& q, const Eigen::Vector3d& t) {
-  entry(key, ValueType::pose3).data = poseBlock(q, t);
+  // Copy into the existing block: its address must not change (solvers hold it).
+  const std::vector<double> block = poseBlock(q, t);
+  std::copy(block.begin(), block.end(), entry(key, ValueType::pose3).data.begin());
 }
 void Values::updatePoint(Key key, const Eigen::Vector3d& p) {
   Eigen::Map<Eigen::Vector3d>(entry(key, ValueType::point3).data.data()) = p;

@@ -73,3 +73,17 @@ TEST(Values, ErrorsNameTheKeyAndTheTypes) {
 
 }  // namespace
 }  // namespace hsmap
+
+namespace hsmap {
+namespace {
+TEST(Values, UpdateKeepsTheBlockAddress) {
+  Values values;
+  values.insertPose(X(0), Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
+  const double* before = values.data(X(0));
+  values.updatePose(X(0), Eigen::Quaterniond(0, 1, 0, 0), Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(values.data(X(0)), before);
+  EXPECT_DOUBLE_EQ(values.poseTranslation(X(0)).z(), 3.0);
+  EXPECT_DOUBLE_EQ(values.poseRotation(X(0)).x(), 1.0);
+}
+}  // namespace
+}  // namespace hsmap
