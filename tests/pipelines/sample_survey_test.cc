@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/survey/survey.h"
-#include "tests/core/survey/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 
 #include "pipelines/sample_survey.h"
-#include "tests/core/survey/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

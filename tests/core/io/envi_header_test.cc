@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/util/input_error.h"
-#include "tests/core/io/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/io/envi_reader.h"
-#include "tests/core/io/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

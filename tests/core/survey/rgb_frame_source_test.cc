@@ -7,7 +7,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/util/input_error.h"
-#include "tests/core/survey/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/util/input_error.h"
-#include "tests/core/survey/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

@@ -10,7 +10,7 @@
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
 #include "pipelines/sample_survey.h"
-#include "tests/core/survey/temp_folder.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {

@@ -1,25 +1,38 @@
 #pragma once
-// Test helper: a unique folder under the system temp directory, removed with
-// everything in it when the object goes out of scope; plus small file helpers.
+// Test helpers shared by every test program: TempFolder, a unique folder
+// under the system temp directory removed with everything in it when the
+// object goes out of scope (named after the label, or the running test), and
+// small file helpers.
 
 #include <unistd.h>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace hsmap::testing {
 
 class TempFolder {
  public:
-  explicit TempFolder(const std::string& label) {
+  // `label` names the folder; empty: the name of the running test.
+  explicit TempFolder(const std::string& label = "") {
     static std::atomic<int> counter{0};
+    std::string name = label;
+    if (name.empty()) {
+      const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+      name = info != nullptr ? info->name() : "test";
+    }
+    for (char& c : name) {
+      if (c == '/') c = '_';
+    }
     path_ = std::filesystem::temp_directory_path() /
-            ("hsmap-test-" + label + "-" + std::to_string(::getpid()) + "-" +
-             std::to_string(counter++));
+            ("hsmap-test-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -32,6 +45,20 @@ class TempFolder {
 
   const std::filesystem::path& path() const { return path_; }
   std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+  // Writes `content` verbatim (binary) to `name` and returns its path.
+  std::filesystem::path write(const std::string& name, const std::string& content) const {
+    const std::filesystem::path file = path_ / name;
+    std::ofstream out(file, std::ios::binary);
+    out << content;
+    return file;
+  }
+
+  // The bytes of `file`; empty when it cannot be read.
+  static std::string read(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
 
  private:
   std::filesystem::path path_;
