@@ -2,6 +2,10 @@
 # Installs the Debian packages hsmap builds against. Non-interactive and
 # idempotent: when every package is already installed it changes nothing and
 # does not touch the network.
+#
+#   scripts/setup.sh           what building and testing need
+#   scripts/setup.sh --docs    also python3-numpy and python3-matplotlib, for the
+#                              scripts that draw the figures in docs/
 set -euo pipefail
 
 PACKAGES=(
@@ -11,6 +15,12 @@ PACKAGES=(
   libtbb-dev libcli11-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
+if [[ "${1:-}" == "--docs" ]]; then
+  PACKAGES+=(python3-numpy python3-matplotlib)
+elif [[ $# -gt 0 ]]; then
+  echo "usage: scripts/setup.sh [--docs]" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -193,5 +193,52 @@ TEST_F(HsmapInspectErrorTest, TruncatedCubeNamesTheDataFile) {
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
 }
 
+// `hsmap simulate`: the tiny preset end to end (it loads back through
+// `hsmap inspect` with its truth folder), and the command's usage errors.
+TEST_F(HsmapToolTest, SimulateTinyThenInspectSeesTheTruth) {
+  const RunResult simulate =
+      runHsmap(temp_, "simulate --preset tiny --out " + quoted(survey_.string()));
+  ASSERT_EQ(simulate.exit_status, 0) << simulate.err;
+  for (const char* expected : {"simulated survey written to", "rgb frames:", "uhi lines:",
+                               "truth: reflectance", "peak memory"}) {
+    EXPECT_NE(simulate.out.find(expected), std::string::npos) << "missing '" << expected
+                                                              << "' in\n" << simulate.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(survey_.string() + ".partial"));
+  const RunResult inspect = runHsmap(temp_, "inspect " + quoted(survey_.string()));
+  EXPECT_EQ(inspect.exit_status, 0) << inspect.err;
+  EXPECT_NE(inspect.out.find("survey 'tiny'"), std::string::npos) << inspect.out;
+  EXPECT_NE(inspect.out.find("truth"), std::string::npos) << inspect.out;
+}
+
+TEST_F(HsmapToolTest, SimulateUsageErrors) {
+  const RunResult presets = runHsmap(temp_, "simulate --list-presets");
+  EXPECT_EQ(presets.exit_status, 0);
+  EXPECT_EQ(presets.out, "tiny\nflat\nlow-relief\nrugged\ntransect-100m\n");
+
+  const RunResult unknown = runHsmap(temp_, "simulate --preset huge --out " + quoted(survey_.string()));
+  EXPECT_EQ(unknown.exit_status, 1);
+  EXPECT_EQ(unknown.err,
+            "error: unknown preset 'huge'; expected one of tiny, flat, low-relief, rugged, "
+            "transect-100m\n");
+
+  const RunResult no_out = runHsmap(temp_, "simulate --preset tiny");
+  EXPECT_EQ(no_out.exit_status, 1);
+  EXPECT_EQ(no_out.err, "error: --out is required\n");
+
+  const RunResult neither = runHsmap(temp_, "simulate --out " + quoted(survey_.string()));
+  EXPECT_EQ(neither.exit_status, 1);
+  EXPECT_NE(neither.err.find("give --preset NAME or --config FILE.yaml"), std::string::npos);
+
+  writeText(temp_ / "bad.yaml", "format: hsmap-simulation/1\npreset: tiny\nseed: -3\n");
+  const RunResult bad = runHsmap(
+      temp_, "simulate --config " + quoted((temp_ / "bad.yaml").string()) + " --out " +
+                 quoted(survey_.string()));
+  EXPECT_EQ(bad.exit_status, 2);
+  EXPECT_EQ(bad.err, "error: " + (temp_ / "bad.yaml").string() +
+                         ":line 3, key seed: expected an integer in [0, 9e15], got -3\n");
+  EXPECT_FALSE(std::filesystem::exists(survey_));
+}
+
 }  // namespace
 }  // namespace hsmap

@@ -11,6 +11,7 @@
 #include "core/util/input_error.h"
 #include "tools/hsmap/inspect_command.h"
 #include "tools/hsmap/sample_command.h"
+#include "tools/hsmap/simulate_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app(
@@ -25,6 +26,8 @@ int main(int argc, char** argv) {
   CLI::App* inspect = hsmap::addInspectCommand(app, inspect_options);
   hsmap::SampleOptions sample_options;
   CLI::App* sample = hsmap::addSampleCommand(app, sample_options);
+  hsmap::SimulateOptions simulate_options;
+  CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);
 
   try {
     app.parse(argc, argv);
@@ -36,6 +39,9 @@ int main(int argc, char** argv) {
   try {
     if (inspect->parsed()) return hsmap::runInspectCommand(inspect_options, std::cout);
     if (sample->parsed()) return hsmap::runSampleCommand(sample_options, std::cout, std::cerr);
+    if (simulate->parsed()) {
+      return hsmap::runSimulateCommand(simulate_options, std::cout, std::cerr);
+    }
   } catch (const hsmap::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

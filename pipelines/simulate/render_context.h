@@ -1,0 +1,38 @@
+#pragma once
+// RenderContext: what the RGB and UHI renderers share: the scene, its ray
+// caster, its material field and the vehicle's lamps.
+#include <cstdint>
+
+#include "core/raycast/mesh_ray_caster.h"
+#include "pipelines/simulate/scene/material_field.h"
+#include "pipelines/simulate/scene/seabed_scene.h"
+#include "pipelines/simulate/underwater_optics.h"
+
+namespace hsmap {
+
+struct RenderContext {
+  const SeabedScene* scene = nullptr;
+  const MeshRayCaster* caster = nullptr;
+  const MaterialField* materials = nullptr;
+  const LampRig* lamps = nullptr;
+  double turbidity = 1.0;
+  bool shadows = true;
+  // Nominal altitude, for the fixed exposure of both cameras.
+  double nominal_altitude_m = 2.0;
+
+  const MeshRayCaster* shadowCaster() const { return shadows ? caster : nullptr; }
+  SurfaceKind kindOf(int triangle) const { return scene->triangle_kind[triangle]; }
+};
+
+// A deterministic seed for the noise of one image row (or scan line), so that
+// rows rendered in parallel, in any order, give the same bytes.
+inline std::uint64_t noiseSeed(std::uint64_t seed, std::uint64_t stream, std::uint64_t index) {
+  std::uint64_t x = seed * 0x9E3779B97F4A7C15ull ^ (stream + 0x632BE59BD9B4E019ull) * 0xBF58476D1CE4E5B9ull ^
+                    (index + 1) * 0x94D049BB133111EBull;
+  x ^= x >> 31;
+  x *= 0xD6E8FEB86659FD93ull;
+  x ^= x >> 32;
+  return x;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,148 @@
+#include "pipelines/simulate/rgb_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "core/geometry/pinhole_radtan_camera.h"
+
+namespace hsmap {
+namespace {
+
+std::vector<Eigen::Vector2d> subPixelOffsets(int samples_per_pixel) {
+  switch (samples_per_pixel) {
+    case 4:  // rotated grid: no two samples share a row or a column
+      return {{-0.125, -0.375}, {0.375, -0.125}, {0.125, 0.375}, {-0.375, 0.125}};
+    default:  // 1, and the centre of quincunx (2)
+      return {{0.0, 0.0}};
+  }
+}
+
+Eigen::Vector3d rayThrough(const PinholeRadtanCamera& camera, double u, double v) {
+  const auto ray = camera.unproject(Eigen::Vector2d(u, v));
+  if (!ray) {
+    throw std::invalid_argument("rgb.camera.distortion: image point (" + std::to_string(u) + ", " +
+                                std::to_string(v) +
+                                ") has no ray (the distortion folds over inside the image)");
+  }
+  return ray->normalized();
+}
+
+}  // namespace
+
+RgbRenderer::RgbRenderer(const RenderContext& context, const SimulatedRgbConfig& config,
+                         std::uint64_t seed)
+    : context_(context), config_(config), seed_(seed), table_(context.turbidity) {
+  const PinholeRadtanCamera camera(config.camera);
+  const auto offsets = subPixelOffsets(config.samples_per_pixel);
+  rays_C_.reserve(std::size_t(camera.width()) * camera.height() * offsets.size());
+  for (int v = 0; v < camera.height(); ++v) {
+    for (int u = 0; u < camera.width(); ++u) {
+      for (const Eigen::Vector2d& offset : offsets) {
+        rays_C_.push_back(rayThrough(camera, u + offset.x(), v + offset.y()));
+      }
+    }
+  }
+  if (config.samples_per_pixel == 2) {
+    for (int v = 0; v <= camera.height(); ++v) {
+      for (int u = 0; u <= camera.width(); ++u) {
+        corner_rays_C_.push_back(rayThrough(camera, u - 0.5, v - 0.5));
+      }
+    }
+  }
+  // Exposure: a flat surface below the camera at the nominal altitude.
+  const double altitude = context.nominal_altitude_m;
+  const LampLighting lighting = context.lamps->nominalLighting(altitude);
+  Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
+  for (int l = 0; l < lighting.count; ++l) {
+    rgb += float(lighting.weight[l]) * table_.at(lighting.path_length[l] + altitude).col(kEndmemberCount);
+  }
+  const double brightest = rgb.maxCoeff() / M_PI * config.exposure_reflectance;
+  if (!(brightest > 0.0)) {
+    throw std::invalid_argument("optics: the lamps do not light the seabed below the RGB camera");
+  }
+  gain_ = 250.0 / brightest;
+}
+
+Eigen::Vector3f RgbRenderer::shade(const SE3d& T_W_B, const Ray& ray, const RayHit& hit) const {
+  Eigen::Vector3f linear = Eigen::Vector3f::Zero();
+  if (!hit.hit()) return linear;
+  const Eigen::Vector3d p_W = ray.origin + hit.distance * ray.direction;
+  const Abundances a = context_.materials->abundances(p_W, context_.kindOf(hit.triangle));
+  const Eigen::Map<const Eigen::Matrix<float, kEndmemberCount, 1>> a_vec(a.data());
+  const LampLighting lighting = context_.lamps->light(T_W_B, p_W, hit.normal, context_.shadowCaster());
+  for (int l = 0; l < lighting.count; ++l) {
+    if (lighting.weight[l] <= 0.0) continue;
+    const auto entry = table_.at(lighting.path_length[l] + hit.distance);
+    linear += float(lighting.weight[l]) * (entry.leftCols<kEndmemberCount>() * a_vec);
+  }
+  return linear;
+}
+
+void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,
+                            int count, Eigen::Vector3f* out) const {
+  thread_local std::vector<Ray> rays;
+  thread_local std::vector<RayHit> hits;
+  rays.resize(count);
+  hits.resize(count);
+  const Eigen::Matrix3d R_W_C = T_W_C.q.toRotationMatrix();
+  for (int i = 0; i < count; ++i) {
+    rays[i].origin = T_W_C.t;
+    rays[i].direction = R_W_C * rays_C[i];
+  }
+  context_.caster->intersect(std::span<const Ray>(rays.data(), count),
+                             std::span<RayHit>(hits.data(), count));
+  for (int i = 0; i < count; ++i) out[i] = shade(T_W_B, rays[i], hits[i]);
+}
+
+cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const {
+  const int width = config_.camera.width;
+  const int height = config_.camera.height;
+  const int per_pixel = config_.samples_per_pixel == 4 ? 4 : 1;
+  const bool quincunx = config_.samples_per_pixel == 2;
+  cv::Mat image(height, width, CV_8UC3);
+  // Quincunx: the corners first, each shared by up to four pixels.
+  std::vector<Eigen::Vector3f> corners;
+  if (quincunx) {
+    corners.resize(std::size_t(width + 1) * (height + 1));
+    tbb::parallel_for(0, height + 1, [&](int v) {
+      const std::size_t offset = std::size_t(v) * (width + 1);
+      shadeRays(T_W_B, T_W_C, corner_rays_C_.data() + offset, width + 1, corners.data() + offset);
+    });
+  }
+  tbb::parallel_for(0, height, [&](int v) {
+    const std::size_t row_rays = std::size_t(width) * per_pixel;
+    thread_local std::vector<Eigen::Vector3f> samples;
+    samples.resize(row_rays);
+    shadeRays(T_W_B, T_W_C, rays_C_.data() + std::size_t(v) * row_rays, int(row_rays),
+              samples.data());
+    std::mt19937_64 rng(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
+    std::normal_distribution<double> normal(0.0, 1.0);
+    auto* out = image.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < width; ++u) {
+      Eigen::Vector3f linear = Eigen::Vector3f::Zero();
+      if (quincunx) {
+        const Eigen::Vector3f* top = corners.data() + std::size_t(v) * (width + 1) + u;
+        const Eigen::Vector3f* bottom = top + (width + 1);
+        linear = 0.5f * samples[u] + 0.125f * (top[0] + top[1] + bottom[0] + bottom[1]);
+      } else {
+        for (int s = 0; s < per_pixel; ++s) linear += samples[std::size_t(u) * per_pixel + s];
+        linear /= float(per_pixel);
+      }
+      linear *= float(gain_ / M_PI);
+      for (int k = 0; k < 3; ++k) {
+        const double dn = linear[k];
+        const double sigma = std::sqrt(config_.read_noise_dn * config_.read_noise_dn +
+                                       std::max(dn, 0.0) / config_.electrons_per_dn);
+        const double noisy = dn + sigma * normal(rng);
+        out[u][2 - k] = static_cast<std::uint8_t>(std::clamp(std::lround(noisy), 0L, 255L));
+      }
+    }
+  });
+  return image;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,178 @@
+#include "pipelines/simulate/simulation_config.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/geometry/so3.h"
+
+namespace hsmap {
+namespace {
+
+// The vehicle layout shared by all presets. The RGB camera looks down with the
+// top of its image forward: z_C = z_B (down), x_C = y_B (starboard),
+// y_C = -x_B (aft). The UHI sits 12 cm aft of the camera, its line across
+// the track (x_U ~ x_C), slightly misaligned as a real mount would be.
+SimulatedCalibrationConfig vehicleCalibration() {
+  SimulatedCalibrationConfig calibration;
+  Eigen::Matrix3d R_B_C;
+  R_B_C << 0, -1, 0,  //
+      1, 0, 0,        //
+      0, 0, 1;
+  calibration.T_B_C.rotation = Eigen::Quaterniond(R_B_C);
+  calibration.T_B_C.translation_m = Eigen::Vector3d(0.55, 0.0, 0.35);
+  calibration.T_C_U.rotation = quaternionFromRollPitchHeadingDeg(0.8, -0.5, 1.2);
+  calibration.T_C_U.translation_m = Eigen::Vector3d(0.02, 0.12, 0.01);
+  calibration.time_offset_s = 0.015;
+  return calibration;
+}
+
+}  // namespace
+
+PinholeRadtanParameters scaledRgbCamera(int width, int height) {
+  PinholeRadtanParameters camera;
+  camera.width = width;
+  camera.height = height;
+  // 62 x 37 degrees field of view at any size: the footprint does not depend
+  // on the resolution, only the ground sampling does.
+  camera.fx = camera.fy = 800.0 * width / 960.0;
+  camera.cx = (width - 1) / 2.0 + 0.8 * width / 960.0;
+  camera.cy = (height - 1) / 2.0 - 1.1 * width / 960.0;
+  camera.distortion = {-0.08, 0.02, 0.0004, -0.0003, 0.0};
+  return camera;
+}
+
+PushbroomParameters scaledUhiCamera(int samples) {
+  PushbroomParameters camera;
+  camera.samples = samples;
+  camera.f = 1500.0 * samples / 1920.0;  // 65 degrees across the line
+  camera.cx = (samples - 1) / 2.0 + 2.5 * samples / 1920.0;
+  camera.distortion = {0.015, -0.002};
+  return camera;
+}
+
+namespace {
+
+SimulationConfig baseConfig() {
+  SimulationConfig config;
+  config.rgb.camera = scaledRgbCamera(960, 540);
+  config.uhi.camera = scaledUhiCamera(1920);
+  config.calibration = vehicleCalibration();
+  return config;
+}
+
+SimulationConfig twentyMetreTransect(const std::string& preset, TerrainPreset terrain) {
+  SimulationConfig config = baseConfig();
+  config.preset = preset;
+  config.name = preset;
+  config.scene.terrain = terrain;
+  config.motion.length_m = 20.0;
+  config.motion.speed_m_s = 0.3;
+  config.motion.altitude_m = 2.0;
+  return config;
+}
+
+void require(bool condition, const std::string& knob, const std::string& expected) {
+  if (!condition) throw std::invalid_argument("simulation setting " + knob + ": expected " + expected);
+}
+
+}  // namespace
+
+const std::vector<std::string>& simulationPresetNames() {
+  static const std::vector<std::string> names{"tiny", "flat", "low-relief", "rugged",
+                                              "transect-100m"};
+  return names;
+}
+
+std::optional<SimulationConfig> simulationPreset(const std::string& name) {
+  if (name == "flat") return twentyMetreTransect(name, TerrainPreset::flat);
+  if (name == "low-relief") return twentyMetreTransect(name, TerrainPreset::low_relief);
+  if (name == "rugged") return twentyMetreTransect(name, TerrainPreset::rugged);
+  if (name == "transect-100m") {
+    SimulationConfig config = twentyMetreTransect(name, TerrainPreset::low_relief);
+    config.motion.length_m = 100.0;
+    return config;
+  }
+  if (name == "tiny") {
+    SimulationConfig config = baseConfig();
+    config.preset = name;
+    config.name = name;
+    config.scene.terrain = TerrainPreset::low_relief;
+    config.motion.length_m = 1.2;
+    config.motion.speed_m_s = 0.3;
+    config.motion.altitude_m = 1.5;
+    config.rgb.camera = scaledRgbCamera(320, 180);
+    config.rgb.samples_per_pixel = 2;
+    config.uhi.camera = scaledUhiCamera(240);
+    config.uhi.bands = 24;
+    return config;
+  }
+  return std::nullopt;
+}
+
+void validateSimulationConfig(const SimulationConfig& config) {
+  require(!config.name.empty(), "name", "a non-empty text");
+  require(config.scene.cell_m >= 0.002 && config.scene.cell_m <= 0.5, "scene.cell_m",
+          "a grid spacing in [0.002, 0.5] m");
+  require(std::isfinite(config.scene.seabed_depth_m) && config.scene.seabed_depth_m > 5.0,
+          "scene.seabed_depth_m", "a depth > 5 m");
+  const VehicleMotionConfig& motion = config.motion;
+  require(motion.length_m > 0.0 && motion.length_m <= 10000.0, "motion.length_m",
+          "a length in (0, 10000] m");
+  require(motion.speed_m_s >= 0.02 && motion.speed_m_s <= 3.0, "motion.speed_m_s",
+          "a speed in [0.02, 3] m/s");
+  require(motion.speed_variation >= 0.0 && motion.speed_variation <= 0.9,
+          "motion.speed_variation", "a fraction in [0, 0.9]");
+  require(motion.altitude_m >= 0.5 && motion.altitude_m <= 10.0, "motion.altitude_m",
+          "an altitude in [0.5, 10] m");
+  require(motion.altitude_m < config.scene.seabed_depth_m - 1.0, "motion.altitude_m",
+          "an altitude that keeps the vehicle below the surface");
+  require(motion.roll_pitch_amplitude_deg >= 0.0 && motion.roll_pitch_amplitude_deg <= 20.0,
+          "motion.roll_pitch_amplitude_deg", "an angle in [0, 20] degrees");
+  require(motion.heading_wander_deg >= 0.0 && motion.heading_wander_deg <= 30.0,
+          "motion.heading_wander_deg", "an angle in [0, 30] degrees");
+  require(motion.lanes >= 1 && motion.lanes <= 100, "motion.lanes", "an integer in [1, 100]");
+  require(motion.lane_spacing_m > 0.0, "motion.lane_spacing_m", "a spacing > 0 m");
+  require(config.rgb.camera.width >= 16 && config.rgb.camera.height >= 16, "rgb.camera",
+          "an image of at least 16 x 16 pixels");
+  require(config.rgb.camera.fx > 0.0 && config.rgb.camera.fy > 0.0, "rgb.camera.fx/fy", "> 0");
+  require(config.rgb.rate_hz > 0.0 && config.rgb.rate_hz <= 200.0, "rgb.rate_hz",
+          "a rate in (0, 200] Hz");
+  require(config.rgb.samples_per_pixel == 1 || config.rgb.samples_per_pixel == 2 ||
+              config.rgb.samples_per_pixel == 4,
+          "rgb.samples_per_pixel", "1, 2 or 4");
+  require(config.rgb.read_noise_dn >= 0.0, "rgb.read_noise_dn", "a value >= 0");
+  require(config.rgb.electrons_per_dn > 0.0, "rgb.electrons_per_dn", "a value > 0");
+  require(config.rgb.exposure_reflectance > 0.0, "rgb.exposure_reflectance", "a value > 0");
+  require(config.uhi.camera.samples >= 8, "uhi.camera.samples", "at least 8 samples");
+  require(config.uhi.camera.f > 0.0, "uhi.camera.f", "> 0");
+  require(config.uhi.bands >= 1 && config.uhi.bands <= 1000, "uhi.bands",
+          "an integer in [1, 1000]");
+  require(config.uhi.wavelength_min_nm >= 350.0 && config.uhi.wavelength_max_nm <= 1000.0 &&
+              (config.uhi.bands == 1 || config.uhi.wavelength_min_nm < config.uhi.wavelength_max_nm),
+          "uhi.wavelength_min_nm/wavelength_max_nm",
+          "an increasing range within [350, 1000] nm");
+  require(config.uhi.rate_hz > 0.0 && config.uhi.rate_hz <= 1000.0, "uhi.rate_hz",
+          "a rate in (0, 1000] Hz");
+  require(config.uhi.ifov_across_deg >= 0.0 && config.uhi.ifov_across_deg < 5.0,
+          "uhi.ifov_across_deg", "an angle in [0, 5) degrees (0: one pixel)");
+  require(config.uhi.subsamples >= 1 && config.uhi.subsamples <= 4, "uhi.subsamples",
+          "an integer in [1, 4]");
+  require(config.uhi.read_noise_dn >= 0.0, "uhi.read_noise_dn", "a value >= 0");
+  require(config.uhi.electrons_per_dn > 0.0, "uhi.electrons_per_dn", "a value > 0");
+  require(config.uhi.exposure_reflectance > 0.0, "uhi.exposure_reflectance", "a value > 0");
+  require(std::abs(config.calibration.time_offset_s) <= 1.0, "calibration.time_offset_s",
+          "an offset within +-1 s");
+  require(config.calibration.error_rotation_deg >= 0.0, "calibration.error_rotation_deg", ">= 0");
+  require(config.calibration.error_translation_m >= 0.0, "calibration.error_translation_m",
+          ">= 0");
+  require(config.ins.rate_hz > 0.0 && config.ins.rate_hz <= 100.0, "ins.rate_hz",
+          "a rate in (0, 100] Hz");
+  require(config.optics.turbidity >= 0.0 && config.optics.turbidity <= 20.0,
+          "optics.turbidity", "a factor in [0, 20]");
+  require(config.optics.lamp_power > 0.0, "optics.lamp_power", "a value > 0");
+  require(config.optics.lamp_beam_exponent >= 0.0, "optics.lamp_beam_exponent", ">= 0");
+  require(config.truth.ortho_pixel_m >= 0.002 && config.truth.ortho_pixel_m <= 1.0,
+          "truth.ortho_pixel_m", "a pixel size in [0.002, 1] m");
+}
+
+}  // namespace hsmap

@@ -1,0 +1,232 @@
+#include "pipelines/simulate/simulation_config_yaml.h"
+
+#include <stdexcept>
+
+#include "core/survey/calibration_yaml.h"
+#include "core/survey/number_text.h"
+#include "core/survey/strict_yaml_map.h"
+#include "core/util/input_error.h"
+
+namespace hsmap {
+namespace {
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+int integer(const StrictYamlMap& map, const std::string& key, int default_value) {
+  return map.has(key) ? map.positiveInteger(key) : default_value;
+}
+
+double nonNegative(const StrictYamlMap& map, const std::string& key, double default_value) {
+  const double value = map.number(key, default_value);
+  if (value < 0.0) map.fail(key, "expected a number >= 0, got " + formatDouble(value));
+  return value;
+}
+
+bool boolean(const StrictYamlMap& map, const std::string& key, bool default_value) {
+  if (!map.has(key)) return default_value;
+  const std::string text = map.text(key);
+  if (text == "true") return true;
+  if (text == "false") return false;
+  map.fail(key, "expected true or false, got '" + text + "'");
+}
+
+void readScene(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("scene")) return;
+  const StrictYamlMap scene = root.map("scene", {"terrain", "seabed_depth_m", "cell_m"});
+  if (scene.has("terrain")) {
+    const std::string name = scene.text("terrain");
+    const auto terrain = parseTerrainPreset(name);
+    if (!terrain) scene.fail("terrain", "expected flat, low-relief or rugged, got '" + name + "'");
+    config.scene.terrain = *terrain;
+  }
+  config.scene.seabed_depth_m = scene.positiveNumber("seabed_depth_m", config.scene.seabed_depth_m);
+  config.scene.cell_m = scene.positiveNumber("cell_m", config.scene.cell_m);
+}
+
+void readMotion(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("motion")) return;
+  const StrictYamlMap motion = root.map(
+      "motion", {"pattern", "length_m", "speed_m_s", "speed_variation", "altitude_m",
+                 "roll_pitch_amplitude_deg", "heading_wander_deg", "lanes", "lane_spacing_m"});
+  VehicleMotionConfig& m = config.motion;
+  if (motion.has("pattern")) {
+    const std::string pattern = motion.text("pattern");
+    if (pattern == "transect") {
+      m.pattern = MotionPattern::transect;
+    } else if (pattern == "lawnmower") {
+      m.pattern = MotionPattern::lawnmower;
+    } else {
+      motion.fail("pattern", "expected transect or lawnmower, got '" + pattern + "'");
+    }
+  }
+  m.length_m = motion.positiveNumber("length_m", m.length_m);
+  m.speed_m_s = motion.positiveNumber("speed_m_s", m.speed_m_s);
+  m.speed_variation = nonNegative(motion, "speed_variation", m.speed_variation);
+  m.altitude_m = motion.positiveNumber("altitude_m", m.altitude_m);
+  m.roll_pitch_amplitude_deg =
+      nonNegative(motion, "roll_pitch_amplitude_deg", m.roll_pitch_amplitude_deg);
+  m.heading_wander_deg = nonNegative(motion, "heading_wander_deg", m.heading_wander_deg);
+  m.lanes = integer(motion, "lanes", m.lanes);
+  m.lane_spacing_m = motion.positiveNumber("lane_spacing_m", m.lane_spacing_m);
+  if (m.pattern == MotionPattern::lawnmower && m.lanes < 2) {
+    motion.fail("lanes", "expected at least 2 lanes for a lawnmower pattern");
+  }
+}
+
+void readRgb(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("rgb")) return;
+  const StrictYamlMap rgb =
+      root.map("rgb", {"width", "height", "camera", "rate_hz", "samples_per_pixel",
+                       "read_noise_dn", "electrons_per_dn", "exposure_reflectance"});
+  SimulatedRgbConfig& r = config.rgb;
+  if (rgb.has("camera") && (rgb.has("width") || rgb.has("height"))) {
+    rgb.fail("camera", "give either camera or width and height, not both");
+  }
+  if (rgb.has("camera")) {
+    r.camera = readPinholeRadtanCamera(rgb, "camera");
+  } else if (rgb.has("width") || rgb.has("height")) {
+    r.camera = scaledRgbCamera(rgb.positiveInteger("width"), rgb.positiveInteger("height"));
+  }
+  r.rate_hz = rgb.positiveNumber("rate_hz", r.rate_hz);
+  r.samples_per_pixel = integer(rgb, "samples_per_pixel", r.samples_per_pixel);
+  if (r.samples_per_pixel != 1 && r.samples_per_pixel != 2 && r.samples_per_pixel != 4) {
+    rgb.fail("samples_per_pixel", "expected 1, 2 or 4, got " + std::to_string(r.samples_per_pixel));
+  }
+  r.read_noise_dn = nonNegative(rgb, "read_noise_dn", r.read_noise_dn);
+  r.electrons_per_dn = rgb.positiveNumber("electrons_per_dn", r.electrons_per_dn);
+  r.exposure_reflectance = rgb.positiveNumber("exposure_reflectance", r.exposure_reflectance);
+}
+
+void readUhi(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("uhi")) return;
+  const StrictYamlMap uhi = root.map(
+      "uhi", {"samples", "camera", "bands", "wavelength_min_nm", "wavelength_max_nm", "rate_hz",
+              "ifov_across_deg", "subsamples", "read_noise_dn", "electrons_per_dn",
+              "exposure_reflectance"});
+  SimulatedUhiConfig& u = config.uhi;
+  if (uhi.has("camera") && uhi.has("samples")) {
+    uhi.fail("camera", "give either camera or samples, not both");
+  }
+  if (uhi.has("camera")) {
+    u.camera = readPushbroomCamera(uhi, "camera");
+  } else if (uhi.has("samples")) {
+    u.camera = scaledUhiCamera(uhi.positiveInteger("samples"));
+  }
+  u.bands = integer(uhi, "bands", u.bands);
+  u.wavelength_min_nm = uhi.positiveNumber("wavelength_min_nm", u.wavelength_min_nm);
+  u.wavelength_max_nm = uhi.positiveNumber("wavelength_max_nm", u.wavelength_max_nm);
+  u.rate_hz = uhi.positiveNumber("rate_hz", u.rate_hz);
+  u.ifov_across_deg = nonNegative(uhi, "ifov_across_deg", u.ifov_across_deg);
+  u.subsamples = integer(uhi, "subsamples", u.subsamples);
+  u.read_noise_dn = nonNegative(uhi, "read_noise_dn", u.read_noise_dn);
+  u.electrons_per_dn = uhi.positiveNumber("electrons_per_dn", u.electrons_per_dn);
+  u.exposure_reflectance = uhi.positiveNumber("exposure_reflectance", u.exposure_reflectance);
+}
+
+void readCalibration(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("calibration")) return;
+  const StrictYamlMap calibration = root.map(
+      "calibration", {"T_C_U", "T_B_C", "time_offset_s", "error_rotation_deg",
+                      "error_translation_m", "error_time_offset_s"});
+  SimulatedCalibrationConfig& c = config.calibration;
+  if (calibration.has("T_C_U")) {
+    c.T_C_U = readRigidTransform(calibration.map("T_C_U", {"rotation_wxyz", "translation_m"}));
+  }
+  if (calibration.has("T_B_C")) {
+    c.T_B_C = readRigidTransform(calibration.map("T_B_C", {"rotation_wxyz", "translation_m"}));
+  }
+  c.time_offset_s = calibration.number("time_offset_s", c.time_offset_s);
+  c.error_rotation_deg = nonNegative(calibration, "error_rotation_deg", c.error_rotation_deg);
+  c.error_translation_m = nonNegative(calibration, "error_translation_m", c.error_translation_m);
+  c.error_time_offset_s = calibration.number("error_time_offset_s", c.error_time_offset_s);
+}
+
+void readIns(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("ins")) return;
+  const StrictYamlMap ins = root.map(
+      "ins", {"rate_hz", "horizontal_noise_m", "horizontal_drift_m_per_sqrt_s", "depth_noise_m",
+              "depth_drift_m_per_sqrt_s", "roll_pitch_noise_deg", "heading_noise_deg"});
+  InsNoiseConfig& n = config.ins;
+  n.rate_hz = ins.positiveNumber("rate_hz", n.rate_hz);
+  n.horizontal_noise_m = nonNegative(ins, "horizontal_noise_m", n.horizontal_noise_m);
+  n.horizontal_drift_m_per_sqrt_s =
+      nonNegative(ins, "horizontal_drift_m_per_sqrt_s", n.horizontal_drift_m_per_sqrt_s);
+  n.depth_noise_m = nonNegative(ins, "depth_noise_m", n.depth_noise_m);
+  n.depth_drift_m_per_sqrt_s =
+      nonNegative(ins, "depth_drift_m_per_sqrt_s", n.depth_drift_m_per_sqrt_s);
+  n.roll_pitch_noise_deg = nonNegative(ins, "roll_pitch_noise_deg", n.roll_pitch_noise_deg);
+  n.heading_noise_deg = nonNegative(ins, "heading_noise_deg", n.heading_noise_deg);
+}
+
+void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
+  if (!root.has("optics")) return;
+  const StrictYamlMap optics =
+      root.map("optics", {"turbidity", "lamp_power", "lamp_separation_m", "lamp_forward_m",
+                          "lamp_beam_exponent", "shadows"});
+  SimulatedOpticsConfig& o = config.optics;
+  o.turbidity = nonNegative(optics, "turbidity", o.turbidity);
+  o.lamp_power = optics.positiveNumber("lamp_power", o.lamp_power);
+  o.lamp_separation_m = nonNegative(optics, "lamp_separation_m", o.lamp_separation_m);
+  o.lamp_forward_m = optics.number("lamp_forward_m", o.lamp_forward_m);
+  o.lamp_beam_exponent = nonNegative(optics, "lamp_beam_exponent", o.lamp_beam_exponent);
+  o.shadows = boolean(optics, "shadows", o.shadows);
+}
+
+}  // namespace
+
+SimulationConfig readSimulationConfig(const std::filesystem::path& path) {
+  const YAML::Node document = loadYamlFile(path);
+  const StrictYamlMap root(path, document, "", 1,
+                           {"format", "preset", "name", "seed", "start_time_s", "origin", "scene",
+                            "motion", "rgb", "uhi", "calibration", "ins", "optics", "truth"});
+  const std::string format = root.text("format");
+  if (format != kSimulationConfigFormat) {
+    root.fail("format", std::string("expected ") + kSimulationConfigFormat + ", got '" + format + "'");
+  }
+  const std::string preset = root.text("preset");
+  std::optional<SimulationConfig> base = simulationPreset(preset);
+  if (!base) {
+    root.fail("preset", "expected one of " + joined(simulationPresetNames()) + ", got '" + preset + "'");
+  }
+  SimulationConfig config = *base;
+  if (root.has("name")) config.name = root.text("name");
+  if (root.has("seed")) {
+    const double seed = root.number("seed");
+    if (seed < 0.0 || seed != std::floor(seed) || seed > 9.0e15) {
+      root.fail("seed", "expected an integer in [0, 9e15], got " + formatDouble(seed));
+    }
+    config.seed = static_cast<std::uint64_t>(seed);
+  }
+  config.start_time_s = root.number("start_time_s", config.start_time_s);
+  if (root.has("origin")) {
+    const StrictYamlMap origin = root.map("origin", {"lat", "lon", "depth"});
+    config.origin.lat_deg = origin.number("lat");
+    config.origin.lon_deg = origin.number("lon");
+    config.origin.depth_m = origin.number("depth");
+    if (std::abs(config.origin.lat_deg) > 90.0) origin.fail("lat", "expected a latitude in [-90, 90]");
+    if (std::abs(config.origin.lon_deg) > 180.0) origin.fail("lon", "expected a longitude in [-180, 180]");
+  }
+  readScene(root, config);
+  readMotion(root, config);
+  readRgb(root, config);
+  readUhi(root, config);
+  readCalibration(root, config);
+  readIns(root, config);
+  readOptics(root, config);
+  if (root.has("truth")) {
+    const StrictYamlMap truth = root.map("truth", {"ortho_pixel_m"});
+    config.truth.ortho_pixel_m = truth.positiveNumber("ortho_pixel_m", config.truth.ortho_pixel_m);
+  }
+  try {
+    validateSimulationConfig(config);
+  } catch (const std::invalid_argument& error) {
+    throw InputError(path, "", error.what());
+  }
+  return config;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,149 @@
+#include "pipelines/simulate/uhi_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/geometry/pushbroom_camera.h"
+
+namespace hsmap {
+
+std::vector<double> uhiBandCentres(const SimulatedUhiConfig& config) {
+  std::vector<double> centres(config.bands);
+  for (int b = 0; b < config.bands; ++b) {
+    centres[b] = config.bands == 1 ? config.wavelength_min_nm
+                                   : config.wavelength_min_nm + (config.wavelength_max_nm -
+                                                                 config.wavelength_min_nm) *
+                                                                    b / (config.bands - 1);
+  }
+  return centres;
+}
+
+UhiRenderer::UhiRenderer(const RenderContext& context, const SimulatedUhiConfig& config,
+                         std::vector<double> wavelengths_nm, std::uint64_t seed)
+    : context_(context), config_(config), wavelengths_nm_(std::move(wavelengths_nm)), seed_(seed) {
+  const int bands = static_cast<int>(wavelengths_nm_.size());
+  attenuation_.resize(bands);
+  lamp_.resize(bands);
+  for (int b = 0; b < bands; ++b) {
+    attenuation_[b] = float(waterAttenuationPerM(wavelengths_nm_[b], context.turbidity));
+    lamp_[b] = float(lampSpectrum(wavelengths_nm_[b]));
+  }
+  endmembers_ = MaterialField::endmemberMatrix(wavelengths_nm_);
+
+  const PushbroomCamera camera(config.camera);
+  const int n = config.subsamples;
+  rays_per_pixel_ = n * n;
+  const double ifov = config.ifov_across_deg > 0.0 ? config.ifov_across_deg * M_PI / 180.0
+                                                   : 1.0 / config.camera.f;
+  auto rayThrough = [&](double u, double across_rad) {
+    const auto ray = camera.unproject(u);
+    if (!ray) {
+      throw std::invalid_argument("uhi.camera.distortion: pixel " + std::to_string(u) +
+                                  " has no ray (the distortion folds over inside the line)");
+    }
+    return Eigen::Vector3d(ray->x() / ray->z(), std::tan(across_rad), 1.0).normalized();
+  };
+  for (int s = 0; s < config.camera.samples; ++s) {
+    centre_rays_U_.push_back(rayThrough(s, 0.0));
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        rays_U_.push_back(rayThrough(s + (i + 0.5) / n - 0.5, ifov * ((j + 0.5) / n - 0.5)));
+      }
+    }
+  }
+
+  // Exposure: a flat surface below the camera at the nominal altitude.
+  const double altitude = context.nominal_altitude_m;
+  const LampLighting lighting = context.lamps->nominalLighting(altitude);
+  Eigen::ArrayXf radiance = Eigen::ArrayXf::Zero(bands);
+  for (int l = 0; l < lighting.count; ++l) {
+    radiance += float(lighting.weight[l]) *
+                (-attenuation_ * float(lighting.path_length[l] + altitude)).exp() * lamp_;
+  }
+  const double brightest = radiance.maxCoeff() / M_PI * config.exposure_reflectance;
+  if (!(brightest > 0.0)) {
+    throw std::invalid_argument("optics: the lamps do not light the seabed below the UHI");
+  }
+  gain_ = 60000.0 / brightest;
+}
+
+void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line_index,
+                         UhiLineImage& out) const {
+  const int samples = config_.camera.samples;
+  const int bands = static_cast<int>(wavelengths_nm_.size());
+  out.dn.resize(bands, samples);
+  out.centre_hits_W.assign(samples, Eigen::Vector3d::Constant(
+                                        std::numeric_limits<double>::quiet_NaN()));
+  const Eigen::Matrix3d R_W_U = T_W_U.q.toRotationMatrix();
+  constexpr int kChunk = 64;
+  const int chunks = (samples + kChunk - 1) / kChunk;
+  tbb::parallel_for(0, chunks, [&](int chunk) {
+    const int s_begin = chunk * kChunk;
+    const int s_end = std::min(samples, s_begin + kChunk);
+    const int count = s_end - s_begin;
+    std::vector<Ray> rays(std::size_t(count) * (rays_per_pixel_ + 1));
+    std::vector<RayHit> hits(rays.size());
+    for (int s = s_begin; s < s_end; ++s) {
+      const std::size_t base = std::size_t(s - s_begin) * (rays_per_pixel_ + 1);
+      for (int r = 0; r < rays_per_pixel_; ++r) {
+        rays[base + r].origin = T_W_U.t;
+        rays[base + r].direction = R_W_U * rays_U_[std::size_t(s) * rays_per_pixel_ + r];
+      }
+      rays[base + rays_per_pixel_].origin = T_W_U.t;
+      rays[base + rays_per_pixel_].direction = R_W_U * centre_rays_U_[s];
+    }
+    context_.caster->intersect(rays, hits);
+    std::mt19937_64 rng(noiseSeed(seed_, 2, std::uint64_t(line_index) * 1024 + chunk));
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    Eigen::ArrayXf radiance(bands);
+    for (int s = s_begin; s < s_end; ++s) {
+      const std::size_t base = std::size_t(s - s_begin) * (rays_per_pixel_ + 1);
+      std::array<Eigen::Matrix<float, kEndmemberCount, 1>, LampLighting::kMaxLamps> w;
+      std::array<double, LampLighting::kMaxLamps> path_sum{};
+      std::array<double, LampLighting::kMaxLamps> path_weight{};
+      for (auto& wl : w) wl.setZero();
+      for (int r = 0; r < rays_per_pixel_; ++r) {
+        const RayHit& hit = hits[base + r];
+        if (!hit.hit()) continue;
+        const Ray& ray = rays[base + r];
+        const Eigen::Vector3d p_W = ray.origin + hit.distance * ray.direction;
+        const Abundances a = context_.materials->abundances(p_W, context_.kindOf(hit.triangle));
+        const Eigen::Map<const Eigen::Matrix<float, kEndmemberCount, 1>> a_vec(a.data());
+        const LampLighting lighting =
+            context_.lamps->light(T_W_B, p_W, hit.normal, context_.shadowCaster());
+        for (int l = 0; l < lighting.count; ++l) {
+          if (lighting.weight[l] <= 0.0) continue;
+          w[l] += float(lighting.weight[l]) * a_vec;
+          path_sum[l] += lighting.weight[l] * (lighting.path_length[l] + hit.distance);
+          path_weight[l] += lighting.weight[l];
+        }
+      }
+      radiance.setZero();
+      for (int l = 0; l < LampLighting::kMaxLamps; ++l) {
+        if (path_weight[l] <= 0.0) continue;
+        const float mean_path = float(path_sum[l] / path_weight[l]);
+        radiance += (endmembers_ * w[l]).array() * (-attenuation_ * mean_path).exp();
+      }
+      radiance *= lamp_ * float(gain_ / (M_PI * rays_per_pixel_));
+      for (int b = 0; b < bands; ++b) {
+        const float dn = radiance[b];
+        const float sigma = std::sqrt(float(config_.read_noise_dn * config_.read_noise_dn) +
+                                      std::max(dn, 0.0f) / float(config_.electrons_per_dn));
+        out.dn(b, s) = std::clamp(dn + sigma * normal(rng), 0.0f, 65535.0f);
+      }
+      const RayHit& centre = hits[base + rays_per_pixel_];
+      if (centre.hit()) {
+        const Ray& ray = rays[base + rays_per_pixel_];
+        out.centre_hits_W[s] = ray.origin + centre.distance * ray.direction;
+      }
+    }
+  });
+}
+
+}  // namespace hsmap
