@@ -367,6 +367,40 @@ bool MeshRayCaster::occluded(const Ray& ray) const {
   return embree.tfar == -std::numeric_limits<float>::infinity();
 }
 
+void MeshRayCaster::occluded(std::span<const Ray> rays, std::span<std::uint8_t> occluded) const {
+  if (rays.size() != occluded.size()) {
+    throw std::invalid_argument(
+        "MeshRayCaster::occluded: expected as many results as rays, got " +
+        std::to_string(occluded.size()) + " results for " + std::to_string(rays.size()) + " rays");
+  }
+  // As in intersect(): the stream API with the COHERENT hint, through a
+  // fixed stack buffer. Shadow rays from one image row towards one lamp are
+  // coherent enough for Embree's packets to pay off.
+  constexpr std::size_t kChunk = 256;
+  alignas(64) RTCRay stream[kChunk];
+  std::size_t ray_of[kChunk];
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  std::size_t next = 0;
+  while (next < rays.size()) {
+    std::size_t count = 0;
+    for (; next < rays.size() && count < kChunk; ++next) {
+      if (!toEmbreeRay(rays[next], scene_->offset, &stream[count])) {
+        occluded[next] = 0;
+        continue;
+      }
+      ray_of[count++] = next;
+    }
+    if (count == 0) continue;
+    rtcOccluded1M(scene_->handle, &context, stream, static_cast<unsigned>(count), sizeof(RTCRay));
+    throwIfEmbreeError("rtcOccluded1M");
+    for (std::size_t k = 0; k < count; ++k) {
+      occluded[ray_of[k]] = stream[k].tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+    }
+  }
+}
+
 Eigen::AlignedBox3d MeshRayCaster::bounds() const { return scene_->bounds; }
 const Eigen::Vector3d& MeshRayCaster::sceneOffset() const { return scene_->offset; }
 std::size_t MeshRayCaster::triangleCount() const { return scene_->triangles.size(); }

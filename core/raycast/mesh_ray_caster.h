@@ -53,6 +53,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -93,6 +94,9 @@ class MeshRayCaster {
   // Whether any triangle is hit in [ray.t_near, ray.t_far]. Cheaper than
   // intersect() (stops at the first hit found); agrees with intersect().hit().
   bool occluded(const Ray& ray) const;
+  // occluded[i] = occluded(rays[i]) (1 or 0); the sizes must match
+  // (std::invalid_argument otherwise). Sequential, like the batch intersect().
+  void occluded(std::span<const Ray> rays, std::span<std::uint8_t> occluded) const;
 
   // Axis-aligned box of the vertices the triangles use.
   Eigen::AlignedBox3d bounds() const;

@@ -33,7 +33,9 @@ Progress::~Progress() { finish(); }
 void Progress::advance(std::int64_t count) {
   done_ += count;
   const double since_last = std::chrono::duration<double>(Clock::now() - last_report_).count();
-  if (since_last >= min_interval_s_) report(false);
+  // Completion is reported once, by finish(), not also by a periodic report.
+  const bool complete = total_ > 0 && done_ >= total_;
+  if (since_last >= min_interval_s_ && !complete) report(false);
 }
 
 void Progress::finish() {

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
 #include "core/geometry/pinhole_radtan_camera.h"
+#include "pipelines/simulate/sensor_noise.h"
 
 namespace hsmap {
 namespace {
@@ -67,13 +67,11 @@ RgbRenderer::RgbRenderer(const RenderContext& context, const SimulatedRgbConfig&
   gain_ = 250.0 / brightest;
 }
 
-Eigen::Vector3f RgbRenderer::shade(const SE3d& T_W_B, const Ray& ray, const RayHit& hit) const {
+Eigen::Vector3f RgbRenderer::shade(const Eigen::Vector3d& p_W, const RayHit& hit,
+                                   const LampLighting& lighting) const {
   Eigen::Vector3f linear = Eigen::Vector3f::Zero();
-  if (!hit.hit()) return linear;
-  const Eigen::Vector3d p_W = ray.origin + hit.distance * ray.direction;
   const Abundances a = context_.materials->abundances(p_W, context_.kindOf(hit.triangle));
   const Eigen::Map<const Eigen::Matrix<float, kEndmemberCount, 1>> a_vec(a.data());
-  const LampLighting lighting = context_.lamps->light(T_W_B, p_W, hit.normal, context_.shadowCaster());
   for (int l = 0; l < lighting.count; ++l) {
     if (lighting.weight[l] <= 0.0) continue;
     const auto entry = table_.at(lighting.path_length[l] + hit.distance);
@@ -84,18 +82,56 @@ Eigen::Vector3f RgbRenderer::shade(const SE3d& T_W_B, const Ray& ray, const RayH
 
 void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,
                             int count, Eigen::Vector3f* out) const {
-  thread_local std::vector<Ray> rays;
-  thread_local std::vector<RayHit> hits;
-  rays.resize(count);
-  hits.resize(count);
+  // Per thread, reused across rows and frames: the renderer allocates nothing per row.
+  struct Buffers {
+    std::vector<Ray> rays;
+    std::vector<RayHit> hits;
+    std::vector<LampLighting> lighting;
+    std::vector<Ray> shadow_rays;
+    std::vector<std::pair<int, int>> shadow_of;  // (ray, lamp) of each shadow ray
+    std::vector<std::uint8_t> occluded;
+  };
+  thread_local Buffers buffers;
+  Buffers& b = buffers;
+  b.rays.resize(count);
+  b.hits.resize(count);
+  b.lighting.resize(count);
+  b.shadow_rays.clear();
+  b.shadow_of.clear();
   const Eigen::Matrix3d R_W_C = T_W_C.q.toRotationMatrix();
   for (int i = 0; i < count; ++i) {
-    rays[i].origin = T_W_C.t;
-    rays[i].direction = R_W_C * rays_C[i];
+    b.rays[i].origin = T_W_C.t;
+    b.rays[i].direction = R_W_C * rays_C[i];
   }
-  context_.caster->intersect(std::span<const Ray>(rays.data(), count),
-                             std::span<RayHit>(hits.data(), count));
-  for (int i = 0; i < count; ++i) out[i] = shade(T_W_B, rays[i], hits[i]);
+  context_.caster->intersect(std::span<const Ray>(b.rays.data(), count),
+                             std::span<RayHit>(b.hits.data(), count));
+  std::array<Ray, LampLighting::kMaxLamps> shadow_rays;
+  for (int i = 0; i < count; ++i) {
+    if (!b.hits[i].hit()) continue;
+    const Eigen::Vector3d p_W = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
+    b.lighting[i] = context_.lamps->lightUnshadowed(T_W_B, p_W, b.hits[i].normal, &shadow_rays);
+    if (!context_.shadows) continue;
+    for (int l = 0; l < b.lighting[i].count; ++l) {
+      if (b.lighting[i].weight[l] <= 0.0) continue;
+      b.shadow_rays.push_back(shadow_rays[l]);
+      b.shadow_of.emplace_back(i, l);
+    }
+  }
+  // All shadow rays of the row in one batch: rays towards one lamp from
+  // neighbouring points travel together through the BVH.
+  b.occluded.resize(b.shadow_rays.size());
+  context_.caster->occluded(b.shadow_rays, b.occluded);
+  for (std::size_t k = 0; k < b.shadow_rays.size(); ++k) {
+    if (b.occluded[k]) b.lighting[b.shadow_of[k].first].weight[b.shadow_of[k].second] = 0.0;
+  }
+  for (int i = 0; i < count; ++i) {
+    if (!b.hits[i].hit()) {
+      out[i].setZero();
+      continue;
+    }
+    const Eigen::Vector3d p_W = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
+    out[i] = shade(p_W, b.hits[i], b.lighting[i]);
+  }
 }
 
 cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const {
@@ -119,8 +155,7 @@ cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t f
     samples.resize(row_rays);
     shadeRays(T_W_B, T_W_C, rays_C_.data() + std::size_t(v) * row_rays, int(row_rays),
               samples.data());
-    std::mt19937_64 rng(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
-    std::normal_distribution<double> normal(0.0, 1.0);
+    SensorNoise noise(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
     auto* out = image.ptr<cv::Vec3b>(v);
     for (int u = 0; u < width; ++u) {
       Eigen::Vector3f linear = Eigen::Vector3f::Zero();
@@ -137,7 +172,7 @@ cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t f
         const double dn = linear[k];
         const double sigma = std::sqrt(config_.read_noise_dn * config_.read_noise_dn +
                                        std::max(dn, 0.0) / config_.electrons_per_dn);
-        const double noisy = dn + sigma * normal(rng);
+        const double noisy = dn + sigma * noise.normal();
         out[u][2 - k] = static_cast<std::uint8_t>(std::clamp(std::lround(noisy), 0L, 255L));
       }
     }

@@ -45,9 +45,9 @@ class RgbRenderer {
   std::uint64_t seed_;
   RgbRadianceTable table_;
   double gain_ = 1.0;
-  // Linear RGB (before exposure) seen along the unit ray `direction_W` from
-  // the camera centre; zero for a miss.
-  Eigen::Vector3f shade(const SE3d& T_W_B, const Ray& ray, const RayHit& hit) const;
+  // Linear RGB (before exposure) of the hit point p_W lit as `lighting`.
+  Eigen::Vector3f shade(const Eigen::Vector3d& p_W, const RayHit& hit,
+                        const LampLighting& lighting) const;
   // Casts and shades `count` rays of `rays_C` from T_W_C into `out`.
   void shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C, int count,
                  Eigen::Vector3f* out) const;

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,6 +24,7 @@
 #include "pipelines/simulate/reflectance_ortho.h"
 #include "pipelines/simulate/rgb_renderer.h"
 #include "pipelines/simulate/scene/seabed_scene.h"
+#include "pipelines/simulate/sensor_noise.h"
 #include "pipelines/simulate/swath_footprint.h"
 #include "pipelines/simulate/uhi_renderer.h"
 
@@ -58,10 +58,10 @@ std::filesystem::path targetFolder(const std::filesystem::path& folder) {
 // The calibration guess of survey.yaml: the truth moved by the configured
 // errors, in seeded random directions.
 void perturbCalibration(const SimulationConfig& config, SurveyConfig& survey) {
-  std::mt19937_64 rng(noiseSeed(config.seed, kGuess, 0));
-  std::normal_distribution<double> normal(0.0, 1.0);
+  SensorNoise draws(noiseSeed(config.seed, kGuess, 0));
   auto randomUnit = [&] {
-    Eigen::Vector3d v(normal(rng), normal(rng), normal(rng));
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) v[i] = draws.normal();  // in order: the bytes must not depend on the compiler
     return Eigen::Vector3d(v.normalized());
   };
   const SimulatedCalibrationConfig& truth = config.calibration;

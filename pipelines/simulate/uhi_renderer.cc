@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <random>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/geometry/pushbroom_camera.h"
+#include "pipelines/simulate/sensor_noise.h"
 
 namespace hsmap {
 
@@ -99,8 +99,7 @@ void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line
       rays[base + rays_per_pixel_].direction = R_W_U * centre_rays_U_[s];
     }
     context_.caster->intersect(rays, hits);
-    std::mt19937_64 rng(noiseSeed(seed_, 2, std::uint64_t(line_index) * 1024 + chunk));
-    std::normal_distribution<float> normal(0.0f, 1.0f);
+    SensorNoise noise(noiseSeed(seed_, 2, std::uint64_t(line_index) * 1024 + chunk));
     Eigen::ArrayXf radiance(bands);
     for (int s = s_begin; s < s_end; ++s) {
       const std::size_t base = std::size_t(s - s_begin) * (rays_per_pixel_ + 1);
@@ -135,7 +134,7 @@ void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line
         const float dn = radiance[b];
         const float sigma = std::sqrt(float(config_.read_noise_dn * config_.read_noise_dn) +
                                       std::max(dn, 0.0f) / float(config_.electrons_per_dn));
-        out.dn(b, s) = std::clamp(dn + sigma * normal(rng), 0.0f, 65535.0f);
+        out.dn(b, s) = std::clamp(dn + sigma * float(noise.normal()), 0.0f, 65535.0f);
       }
       const RayHit& centre = hits[base + rays_per_pixel_];
       if (centre.hit()) {

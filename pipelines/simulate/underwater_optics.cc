@@ -50,8 +50,9 @@ LampRig::LampRig(const SimulatedOpticsConfig& optics, const RigidTransformConfig
   p_B_[1] = camera_B + Eigen::Vector3d(optics.lamp_forward_m, half, 0.0);
 }
 
-LampLighting LampRig::light(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
-                            const Eigen::Vector3d& n_W, const MeshRayCaster* shadow_caster) const {
+LampLighting LampRig::lightUnshadowed(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
+                                      const Eigen::Vector3d& n_W,
+                                      std::array<Ray, LampLighting::kMaxLamps>* shadow_rays) const {
   LampLighting lighting;
   lighting.count = LampLighting::kMaxLamps;
   const Eigen::Vector3d axis_W = T_W_B.q * axis_B_;
@@ -61,19 +62,27 @@ LampLighting LampRig::light(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
     const double r = to_lamp.norm();
     lighting.path_length[l] = r;
     lighting.weight[l] = 0.0;
-    if (r < 1e-6) continue;
+    if (r < 5e-3) continue;
     const Eigen::Vector3d to_lamp_unit = to_lamp / r;
     const double cos_incidence = n_W.dot(to_lamp_unit);
     const double cos_beam = -axis_W.dot(to_lamp_unit);
     if (cos_incidence <= 0.0 || cos_beam <= 0.0) continue;
-    if (shadow_caster != nullptr) {
-      // Skip the first 2 mm so the ray does not find the surface it starts on.
-      Ray ray{p_W, to_lamp_unit, 2e-3, r - 2e-3};
-      if (shadow_caster->occluded(ray)) continue;
-    }
     // The default beam (n = 2) without pow(): this runs for every ray.
-    const double beam = beam_exponent_ == 2.0 ? cos_beam * cos_beam : std::pow(cos_beam, beam_exponent_);
+    const double beam =
+        beam_exponent_ == 2.0 ? cos_beam * cos_beam : std::pow(cos_beam, beam_exponent_);
     lighting.weight[l] = power_ * beam * cos_incidence / (r * r);
+    if (shadow_rays != nullptr) (*shadow_rays)[l] = Ray{p_W, to_lamp_unit, 2e-3, r - 2e-3};
+  }
+  return lighting;
+}
+
+LampLighting LampRig::light(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
+                            const Eigen::Vector3d& n_W, const MeshRayCaster* shadow_caster) const {
+  std::array<Ray, LampLighting::kMaxLamps> shadow_rays;
+  LampLighting lighting = lightUnshadowed(T_W_B, p_W, n_W, &shadow_rays);
+  if (shadow_caster == nullptr) return lighting;
+  for (int l = 0; l < lighting.count; ++l) {
+    if (lighting.weight[l] > 0.0 && shadow_caster->occluded(shadow_rays[l])) lighting.weight[l] = 0.0;
   }
   return lighting;
 }

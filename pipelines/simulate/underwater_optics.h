@@ -55,6 +55,13 @@ class LampRig {
   // contribute nothing.
   LampLighting light(const SE3d& T_W_B, const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W,
                      const MeshRayCaster* shadow_caster) const;
+  // light() without shadows, plus the shadow ray of every lamp that lights
+  // the point (weight > 0): from p_W towards the lamp, skipping 2 mm at both
+  // ends so it finds neither the surface it starts on nor the lamp. For
+  // renderers that test many shadow rays in one batch.
+  LampLighting lightUnshadowed(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
+                               const Eigen::Vector3d& n_W,
+                               std::array<Ray, LampLighting::kMaxLamps>* shadow_rays) const;
   // Lighting of a flat seabed `altitude_m` straight below the RGB camera with
   // the body level: the reference geometry of the cameras' fixed exposure.
   LampLighting nominalLighting(double altitude_m) const;

@@ -302,6 +302,26 @@ TEST(MeshRayCaster, OccludedAgreesWithIntersect) {
   EXPECT_LT(occluded, 9000);
 }
 
+TEST(MeshRayCaster, BatchOccludedAgreesWithSingleRays) {
+  const HeightField field = seabedField();
+  const MeshRayCaster caster(field.vertices, field.triangles);
+  // 600 rays: more than two stream chunks, and one with an empty segment.
+  std::vector<Ray> rays = randomRays(600, 9);
+  rays[300].t_far = rays[300].t_near - 1.0;
+  std::vector<std::uint8_t> batch(rays.size(), 7);
+  caster.occluded(rays, batch);
+  int occluded = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(batch[i], caster.occluded(rays[i]) ? 1 : 0) << "ray " << i;
+    occluded += batch[i];
+  }
+  EXPECT_EQ(batch[300], 0);
+  EXPECT_GT(occluded, 100);
+  EXPECT_LT(occluded, 550);
+  std::vector<std::uint8_t> too_few(rays.size() - 1);
+  EXPECT_THROW(caster.occluded(rays, too_few), std::invalid_argument);
+}
+
 TEST(MeshRayCaster, NoRaySlipsThroughSharedEdgesOrCorners) {
   // Vertical rays exactly through grid vertices, cell edges and diagonals
   // (where 2 to 6 triangles meet) must all hit: the traversal is watertight.
