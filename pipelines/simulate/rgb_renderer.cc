@@ -106,10 +106,11 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   context_.caster->intersect(std::span<const Ray>(b.rays.data(), count),
                              std::span<RayHit>(b.hits.data(), count));
   std::array<Ray, LampLighting::kMaxLamps> shadow_rays;
+  const LampRig::Posed lamps = context_.lamps->posed(T_W_B);
   for (int i = 0; i < count; ++i) {
     if (!b.hits[i].hit()) continue;
     const Eigen::Vector3d p_W = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
-    b.lighting[i] = context_.lamps->lightUnshadowed(T_W_B, p_W, b.hits[i].normal, &shadow_rays);
+    b.lighting[i] = context_.lamps->lightUnshadowed(lamps, p_W, b.hits[i].normal, &shadow_rays);
     if (!context_.shadows) continue;
     for (int l = 0; l < b.lighting[i].count; ++l) {
       if (b.lighting[i].weight[l] <= 0.0) continue;

@@ -66,7 +66,7 @@ SimulationConfig twentyMetreTransect(const std::string& preset, TerrainPreset te
   config.name = preset;
   config.scene.terrain = terrain;
   config.motion.length_m = 20.0;
-  config.motion.speed_m_s = 0.3;
+  config.motion.speed_m_s = 0.4;
   config.motion.altitude_m = 2.0;
   return config;
 }

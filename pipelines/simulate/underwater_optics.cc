@@ -50,15 +50,21 @@ LampRig::LampRig(const SimulatedOpticsConfig& optics, const RigidTransformConfig
   p_B_[1] = camera_B + Eigen::Vector3d(optics.lamp_forward_m, half, 0.0);
 }
 
-LampLighting LampRig::lightUnshadowed(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
+LampRig::Posed LampRig::posed(const SE3d& T_W_B) const {
+  Posed lamps;
+  for (int l = 0; l < LampLighting::kMaxLamps; ++l) lamps.lamp_W[l] = T_W_B * p_B_[l];
+  lamps.axis_W = T_W_B.q * axis_B_;
+  return lamps;
+}
+
+LampLighting LampRig::lightUnshadowed(const Posed& lamps, const Eigen::Vector3d& p_W,
                                       const Eigen::Vector3d& n_W,
                                       std::array<Ray, LampLighting::kMaxLamps>* shadow_rays) const {
   LampLighting lighting;
   lighting.count = LampLighting::kMaxLamps;
-  const Eigen::Vector3d axis_W = T_W_B.q * axis_B_;
+  const Eigen::Vector3d& axis_W = lamps.axis_W;
   for (int l = 0; l < LampLighting::kMaxLamps; ++l) {
-    const Eigen::Vector3d lamp_W = T_W_B * p_B_[l];
-    const Eigen::Vector3d to_lamp = lamp_W - p_W;
+    const Eigen::Vector3d to_lamp = lamps.lamp_W[l] - p_W;
     const double r = to_lamp.norm();
     lighting.path_length[l] = r;
     lighting.weight[l] = 0.0;
@@ -79,7 +85,7 @@ LampLighting LampRig::lightUnshadowed(const SE3d& T_W_B, const Eigen::Vector3d& 
 LampLighting LampRig::light(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
                             const Eigen::Vector3d& n_W, const MeshRayCaster* shadow_caster) const {
   std::array<Ray, LampLighting::kMaxLamps> shadow_rays;
-  LampLighting lighting = lightUnshadowed(T_W_B, p_W, n_W, &shadow_rays);
+  LampLighting lighting = lightUnshadowed(posed(T_W_B), p_W, n_W, &shadow_rays);
   if (shadow_caster == nullptr) return lighting;
   for (int l = 0; l < lighting.count; ++l) {
     if (lighting.weight[l] > 0.0 && shadow_caster->occluded(shadow_rays[l])) lighting.weight[l] = 0.0;

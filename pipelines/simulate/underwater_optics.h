@@ -46,6 +46,13 @@ struct LampLighting {
 // Two lamps, port and starboard of the RGB camera, pointing down (+z_B).
 class LampRig {
  public:
+  // The lamps in W for one body pose: computed once per frame or line
+  // instead of once per ray.
+  struct Posed {
+    std::array<Eigen::Vector3d, LampLighting::kMaxLamps> lamp_W;
+    Eigen::Vector3d axis_W;
+  };
+
   LampRig(const SimulatedOpticsConfig& optics, const RigidTransformConfig& T_B_C);
   const std::array<Eigen::Vector3d, LampLighting::kMaxLamps>& lampPositions_B() const {
     return p_B_;
@@ -59,9 +66,10 @@ class LampRig {
   // the point (weight > 0): from p_W towards the lamp, skipping 2 mm at both
   // ends so it finds neither the surface it starts on nor the lamp. For
   // renderers that test many shadow rays in one batch.
-  LampLighting lightUnshadowed(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
+  LampLighting lightUnshadowed(const Posed& lamps, const Eigen::Vector3d& p_W,
                                const Eigen::Vector3d& n_W,
                                std::array<Ray, LampLighting::kMaxLamps>* shadow_rays) const;
+  Posed posed(const SE3d& T_W_B) const;
   // Lighting of a flat seabed `altitude_m` straight below the RGB camera with
   // the body level: the reference geometry of the cameras' fixed exposure.
   LampLighting nominalLighting(double altitude_m) const;
