@@ -1,19 +1,74 @@
 #include "factors/spline_reprojection_factor.h"
 
 #include <ceres/autodiff_cost_function.h>
+#include <ceres/sized_cost_function.h>
 
 #include <vector>
 
+#include "core/geometry/se3_bspline_jacobians.h"
 #include "factors/factor_argument_checks.h"
+#include "factors/pose_block_jacobian.h"
+#include "factors/world_point_projection_jacobians.h"
 
 namespace hsmap {
 
 namespace {
 
+constexpr int P = SE3d::kNumParameters;
+
 std::vector<Key> keysOf(const SplineSegment& segment, Key landmark_p_W) {
   const auto i = static_cast<std::uint64_t>(segment.first_control_point);
   return {S(i), S(i + 1), S(i + 2), S(i + 3), landmark_p_W};
 }
+
+// The residual of SplineReprojectionResidual with analytic Jacobians: the
+// pinhole projection's Jacobian with respect to the frame pose, chained
+// through the spline to the four control points.
+class SplineReprojectionCost final
+    : public ceres::SizedCostFunction<SplineReprojectionFactor::kResidualDimension, P, P, P, P, 3> {
+ public:
+  SplineReprojectionCost(double u, const Eigen::Vector2d& pixel, const PinholeRadtanCamera& camera)
+      : u_(u), pixel_(pixel), camera_(camera) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Eigen::Vector3d p_W(parameters[4][0], parameters[4][1], parameters[4][2]);
+    if (jacobians == nullptr) {
+      // Residual only (line search, cost checks): the pose alone is cheaper.
+      const Eigen::Vector2d predicted = projectPinhole(
+          evaluateSe3Spline(parameters, u_), p_W, camera_.intrinsics().data());
+      residuals[0] = predicted.x() - pixel_.x();
+      residuals[1] = predicted.y() - pixel_.y();
+      return true;
+    }
+    const SE3SplineJacobians spline = SE3SplineJacobians::fromBlocks(parameters, u_);
+    ProjectionJacobians projection;
+    const Eigen::Vector2d predicted = projectWithJacobians(camera_, spline.pose(), p_W, &projection);
+    residuals[0] = predicted.x() - pixel_.x();
+    residuals[1] = predicted.y() - pixel_.y();
+
+    if (jacobians[0] != nullptr || jacobians[1] != nullptr || jacobians[2] != nullptr ||
+        jacobians[3] != nullptr) {
+      std::array<Eigen::Matrix<double, 2, 6>, 4> d_r_d_control_points;
+      spline.chain<2>(projection.d_pose, &d_r_d_control_points);
+      for (int k = 0; k < 4; ++k) {
+        if (jacobians[k] == nullptr) continue;
+        poseTangentToAmbientJacobian<2>(SE3d::fromParameters(parameters[k]),
+                                        d_r_d_control_points[k], jacobians[k]);
+      }
+    }
+    if (jacobians[4] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 2, 3, Eigen::RowMajor>> d_r_d_p_W(jacobians[4]);
+      d_r_d_p_W = projection.d_point;
+    }
+    return true;
+  }
+
+ private:
+  double u_;
+  Eigen::Vector2d pixel_;
+  PinholeRadtanCamera camera_;
+};
 
 }  // namespace
 
@@ -25,16 +80,19 @@ SplineReprojectionFactor::SplineReprojectionFactor(const SplineTiming& spline, d
       t_frame_(t_frame),
       segment_(spline.segmentAt(t_frame)),
       pixel_(pixel),
-      intrinsics_(PinholeRadtanCamera(intrinsics).intrinsics()) {
+      camera_(intrinsics) {
   requireNoiseDimension("SplineReprojectionFactor", this->noise(), kResidualDimension);
   requireFinite("SplineReprojectionFactor", "pixel", pixel_);
 }
 
 std::unique_ptr<ceres::CostFunction> SplineReprojectionFactor::createCostFunction() const {
-  constexpr int P = SE3d::kNumParameters;
+  return std::make_unique<SplineReprojectionCost>(segment_.u, pixel_, camera_);
+}
+
+std::unique_ptr<ceres::CostFunction> SplineReprojectionFactor::createAutoDiffCostFunction() const {
   return std::make_unique<
       ceres::AutoDiffCostFunction<SplineReprojectionResidual, kResidualDimension, P, P, P, P, 3>>(
-      new SplineReprojectionResidual{segment_.u, pixel_, intrinsics_});
+      new SplineReprojectionResidual{segment_.u, pixel_, camera_.intrinsics()});
 }
 
 }  // namespace hsmap

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tests/factors/factor_test_support.h"
+#include "tests/factors/reference_jacobians.h"
 
 namespace hsmap {
 namespace {
@@ -207,6 +208,78 @@ TEST(PushbroomLineFactor, JacobiansMatchNumericTangentDifferencesInBothSegmentsO
                                              stateOf(spline, with_fixed_point, extrinsic(), d, nullptr)))
         << "t_recorded " << t_recorded << ", d " << d;
   }
+}
+
+TEST(PushbroomLineFactor, AnalyticJacobiansEqualTheAutodiffOnesInBothFormsAndSegments) {
+  std::mt19937 rng(85);
+  const SE3Splined spline = trajectory(rng);
+  const SplineTiming timing = SplineTiming::of(spline);
+  const double d0 = 0.02;
+  for (int trial = 0; trial < 20; ++trial) {
+    const double t_recorded = std::uniform_real_distribution<double>(
+        spline.validBegin() + 0.05, spline.validEnd() - 0.05)(rng);
+    // d anywhere in the window's margin, so either of its segments is current.
+    const double d = d0 + std::uniform_real_distribution<double>(-0.45, 0.45)(rng) * kDt;
+    const double x_U = std::uniform_real_distribution<double>(-0.6, 0.6)(rng);
+    const LineSighting sighting = sightingAt(spline, t_recorded + d, extrinsic(), x_U, 3.5);
+    const Eigen::Vector3d p_W =
+        sighting.p_W + test::randomVector(rng, Eigen::Vector3d::Constant(-0.05),
+                                          Eigen::Vector3d::Constant(0.05));
+    const PushbroomObservation observation{t_recorded, sighting.u + 3.0};
+    const PushbroomLineFactor with_landmark(timing, d0, E(0), D(0), L(0), observation, uhiCamera(),
+                                            lineNoise());
+    if (!with_landmark.coversTimeOffset(d)) continue;  // only near the spline's ends
+    EXPECT_TRUE(test::tangentJacobiansMatchReference(
+        *with_landmark.createCostFunction(), *with_landmark.createAutoDiffCostFunction(),
+        stateOf(spline, with_landmark, extrinsic(), d, &p_W)))
+        << "t_recorded " << t_recorded << ", d " << d;
+    const PushbroomLineFactor with_fixed_point(timing, d0, E(0), D(0), p_W, observation,
+                                               uhiCamera(), lineNoise());
+    EXPECT_TRUE(test::tangentJacobiansMatchReference(
+        *with_fixed_point.createCostFunction(), *with_fixed_point.createAutoDiffCostFunction(),
+        stateOf(spline, with_fixed_point, extrinsic(), d, nullptr)))
+        << "t_recorded " << t_recorded << ", d " << d;
+  }
+}
+
+TEST(PushbroomLineFactor, AnalyticJacobiansHoldBehindTheCameraWhereTheDepthIsFloored) {
+  std::mt19937 rng(86);
+  const SE3Splined spline = trajectory(rng);
+  const double t_recorded = kT0 + 5.4 * kDt;
+  for (const double z_U : {0.009, 0.0, -0.4}) {
+    const Eigen::Vector3d p_W =
+        spline.pose(t_recorded) * extrinsic() * Eigen::Vector3d(0.003, 0.001, z_U);
+    const PushbroomLineFactor factor(SplineTiming::of(spline), 0.0, E(0), D(0), L(0),
+                                     {t_recorded, 1000.0}, uhiCamera(), lineNoise());
+    const auto blocks = stateOf(spline, factor, extrinsic(), 0.0, &p_W);
+    EXPECT_TRUE(test::tangentJacobiansMatchReference(*factor.createCostFunction(),
+                                                     *factor.createAutoDiffCostFunction(), blocks))
+        << "z_U " << z_U;
+    // Far behind the camera the residual (~1e9) curves too sharply for the
+    // h = 1e-4 difference quotient; near the floor it is still a fair reference.
+    if (z_U >= 0.0) {
+      EXPECT_TRUE(tangentJacobiansMatchNumeric(*factor.createCostFunction(), blocks))
+          << "z_U " << z_U;
+    }
+  }
+}
+
+TEST(PushbroomLineFactor, JacobiansOfSomeBlocksOnlyEqualThoseOfAFullEvaluation) {
+  // Ceres passes null for the Jacobians of constant blocks (e.g. a fixed T_C_U or d).
+  std::mt19937 rng(87);
+  const SE3Splined spline = trajectory(rng);
+  const double t_recorded = kT0 + 4.3 * kDt;
+  const LineSighting sighting = sightingAt(spline, t_recorded, extrinsic(), 0.2, 3.0);
+  const PushbroomLineFactor factor(SplineTiming::of(spline), 0.0, E(0), D(0), L(0),
+                                   {t_recorded, sighting.u + 2.0}, uhiCamera(), lineNoise());
+  const auto blocks = stateOf(spline, factor, extrinsic(), 0.0, &sighting.p_W);
+  const auto cost = factor.createCostFunction();
+  EXPECT_TRUE(test::partialJacobiansMatchFull(
+      *cost, blocks, {true, true, true, true, true, false, false, true}));
+  EXPECT_TRUE(test::partialJacobiansMatchFull(
+      *cost, blocks, {false, false, false, false, false, true, true, false}));
+  EXPECT_TRUE(test::partialJacobiansMatchFull(
+      *cost, blocks, {true, false, false, false, true, false, true, false}));
 }
 
 TEST(PushbroomLineFactor, ControlPointOutsideTheCurrentSegmentHasZeroJacobian) {

@@ -9,6 +9,7 @@
 
 #include "factors/reprojection_factor.h"
 #include "tests/factors/factor_test_support.h"
+#include "tests/factors/reference_jacobians.h"
 
 namespace hsmap {
 namespace {
@@ -141,6 +142,68 @@ TEST(SplineReprojectionFactor, JacobiansMatchNumericTangentDifferences) {
                                              stateOf(spline, factor.segment(), p_W)))
         << "trial " << trial;
   }
+}
+
+TEST(SplineReprojectionFactor, AnalyticJacobiansEqualTheAutodiffOnesInTheTangentSpace) {
+  std::mt19937 rng(73);
+  const SE3Splined spline = wobblyTrajectory(rng, 12);
+  // Random frame times plus the ends of segments (u = 0 and u -> 1).
+  std::vector<double> frame_times = {kT0 + 4.0 * kDt, kT0 + 5.0 * kDt - 1e-9, spline.validEnd()};
+  for (int trial = 0; trial < 20; ++trial) {
+    frame_times.push_back(
+        std::uniform_real_distribution<double>(spline.validBegin(), spline.validEnd())(rng));
+  }
+  for (const double t_frame : frame_times) {
+    const Eigen::Vector3d p_W =
+        spline.pose(t_frame) *
+        test::randomVector(rng, Eigen::Vector3d(-1.5, -0.9, 1.0), Eigen::Vector3d(1.5, 0.9, 9.0));
+    const SplineReprojectionFactor factor(SplineTiming::of(spline), t_frame, L(0),
+                                          Eigen::Vector2d(310.0, 190.0), distortedCamera(),
+                                          pixelNoise());
+    EXPECT_TRUE(test::tangentJacobiansMatchReference(*factor.createCostFunction(),
+                                                     *factor.createAutoDiffCostFunction(),
+                                                     stateOf(spline, factor.segment(), p_W)))
+        << "t_frame " << t_frame;
+  }
+}
+
+TEST(SplineReprojectionFactor, AnalyticJacobiansHoldBehindTheCameraWhereTheDepthIsFloored) {
+  std::mt19937 rng(74);
+  const SE3Splined spline = wobblyTrajectory(rng, 12);
+  const double t_frame = kT0 + 4.6 * kDt;
+  const SplineReprojectionFactor factor(SplineTiming::of(spline), t_frame, L(0),
+                                        Eigen::Vector2d(310.0, 190.0), distortedCamera(),
+                                        pixelNoise());
+  // Depths below the 1 cm floor: just below it, at zero and behind the camera.
+  for (const double z_C : {0.009, 0.0, -0.5}) {
+    const Eigen::Vector3d p_W = spline.pose(t_frame) * Eigen::Vector3d(0.002, -0.001, z_C);
+    const auto blocks = stateOf(spline, factor.segment(), p_W);
+    EXPECT_TRUE(test::tangentJacobiansMatchReference(*factor.createCostFunction(),
+                                                     *factor.createAutoDiffCostFunction(), blocks))
+        << "z_C " << z_C;
+    // Far behind the camera the residual (~1e9) curves too sharply for the
+    // h = 1e-4 difference quotient; near the floor it is still a fair reference.
+    if (z_C >= 0.0) {
+      EXPECT_TRUE(tangentJacobiansMatchNumeric(*factor.createCostFunction(), blocks))
+          << "z_C " << z_C;
+    }
+  }
+}
+
+TEST(SplineReprojectionFactor, JacobiansOfSomeBlocksOnlyEqualThoseOfAFullEvaluation) {
+  // Ceres passes null for the Jacobians of constant blocks.
+  std::mt19937 rng(75);
+  const SE3Splined spline = wobblyTrajectory(rng, 12);
+  const double t_frame = kT0 + 6.3 * kDt;
+  const SplineReprojectionFactor factor(SplineTiming::of(spline), t_frame, L(0),
+                                        Eigen::Vector2d(500.0, 250.0), distortedCamera(),
+                                        pixelNoise());
+  const auto blocks =
+      stateOf(spline, factor.segment(), spline.pose(t_frame) * Eigen::Vector3d(0.2, 0.1, 4.0));
+  const auto cost = factor.createCostFunction();
+  EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {false, true, false, true, false}));
+  EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {true, false, true, false, true}));
+  EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {false, false, false, false, true}));
 }
 
 TEST(SplineReprojectionFactor, RejectsAFrameOutsideTheSplineAndAWrongNoise) {
