@@ -7,7 +7,8 @@ Writes PREFIX_rgb_N.png (three RGB frames spread over the survey, at half
 resolution), PREFIX_uhi_stack.png (the UHI cube's scan lines stacked in time
 order as a colour composite of the bands nearest 640, 550 and 460 nm, each
 band stretched between its 1st and 99th percentiles) and PREFIX_truth.png
-(the same composite of truth/reflectance). Reads the ENVI files with numpy
+(the same composite of truth/reflectance). The quick-looks are subsampled to
+keep them small (UHI every 2nd line and 4th sample, truth every 2nd pixel). Reads the ENVI files with numpy
 (uint16 or float32, BIL, little endian), as written by hsmap simulate.
 """
 import csv
@@ -64,12 +65,13 @@ def main():
         image = mpimg.imread(os.path.join(survey, "rgb", frames[index]))
         mpimg.imsave(os.path.join(out, f"{prefix}_rgb_{i + 1}.png"), image[::2, ::2])
     cube, wavelengths = read_envi_bil(os.path.join(survey, "uhi", "cube.hdr"))
-    # Lines run forward in time; show them bottom to top (north up on a northbound transect),
-    # with every 2nd sample so the aspect stays close to the ground's.
-    stack = composite(cube, wavelengths)[::-1, ::2]
+    # Lines run forward in time; show them bottom to top (north up on a northbound transect).
+    # Every 2nd line and 4th sample: the quick-look stays small, and at 1.3 cm per line and
+    # ~1.4 mm per sample the ground's aspect is kept within a factor of two.
+    stack = composite(cube, wavelengths)[::-2, ::4]
     mpimg.imsave(os.path.join(out, f"{prefix}_uhi_stack.png"), stack)
     truth, truth_wavelengths = read_envi_bil(os.path.join(survey, "truth", "reflectance.hdr"))
-    mpimg.imsave(os.path.join(out, f"{prefix}_truth.png"), composite(truth, truth_wavelengths))
+    mpimg.imsave(os.path.join(out, f"{prefix}_truth.png"), composite(truth, truth_wavelengths)[::2, ::2])
     print(f"wrote quick-looks of {survey} to {out}")
 
 

@@ -1,6 +1,7 @@
 #pragma once
 // SensorNoise: the Gaussian noise of one image row or scan line, from a
-// counter-based generator (splitmix64) and Box-Muller pairs.
+// counter-based generator (splitmix64) and Marsaglia's polar method (exact
+// normal pairs without trigonometry: it runs for every pixel and band).
 //
 // Why not std::normal_distribution over std::mt19937_64: seeding a Mersenne
 // twister for every row costs more than the row's noise, and the standard
@@ -22,13 +23,16 @@ class SensorNoise {
       has_spare_ = false;
       return spare_;
     }
-    constexpr double kTwoPi = 6.283185307179586477;
-    const double u1 = 1.0 - uniform01();  // in (0, 1]: the logarithm stays finite
-    const double u2 = uniform01();
-    const double radius = std::sqrt(-2.0 * std::log(u1));
-    spare_ = radius * std::sin(kTwoPi * u2);
+    double x, y, s;
+    do {
+      x = 2.0 * uniform01() - 1.0;
+      y = 2.0 * uniform01() - 1.0;
+      s = x * x + y * y;
+    } while (s >= 1.0 || s == 0.0);
+    const double scale = std::sqrt(-2.0 * std::log(s) / s);
+    spare_ = y * scale;
     has_spare_ = true;
-    return radius * std::cos(kTwoPi * u2);
+    return x * scale;
   }
 
  private:

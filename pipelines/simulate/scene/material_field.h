@@ -19,7 +19,9 @@
 //           grains (cm), algae and sponge patches (dm) and a dusting of
 //           sediment (m).
 // Positions are 3D (p_W), so steep faces, boulder sides and overhangs are
-// textured like the ground, without stretching.
+// textured like the ground, without stretching; only the metre-scale
+// sand/sediment areas of the seabed are drawn in plan view (north, east),
+// where a slope's stretch of a metre-scale patch does not show.
 //
 // Contract: abundances() is a pure function of (seed, p_W, kind): the same
 // inputs give bit-identical outputs in any thread and any call order. Each
