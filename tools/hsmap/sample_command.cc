@@ -1,4 +1,5 @@
 #include "tools/hsmap/sample_command.h"
+#include "tools/hsmap/output_folder.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -27,18 +28,7 @@ CLI::App* addSampleCommand(CLI::App& app, SampleOptions& options) {
 }
 
 int runSampleCommand(const SampleOptions& options, std::ostream& out, std::ostream& err) {
-  std::error_code error;
-  if (std::filesystem::exists(options.out, error)) {
-    if (!std::filesystem::is_directory(options.out, error)) {
-      err << "error: " << options.out.string() << " exists and is not a folder\n";
-      return 1;
-    }
-    if (!std::filesystem::is_empty(options.out, error) && !options.force) {
-      err << "error: " << options.out.string()
-          << " is not empty; pass --force to replace it (its contents will be deleted)\n";
-      return 1;
-    }
-  }
+  if (!outputFolderUsable(options.out, options.force, err)) return 1;
   const SampleSurveyContents written = writeSampleSurvey(options.out);
   char duration[32];
   std::snprintf(duration, sizeof(duration), "%.2f", written.duration_s);

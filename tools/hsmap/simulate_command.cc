@@ -1,4 +1,5 @@
 #include "tools/hsmap/simulate_command.h"
+#include "tools/hsmap/output_folder.h"
 
 #include <CLI/CLI.hpp>
 #include <ostream>
@@ -63,18 +64,7 @@ int runSimulateCommand(const SimulateOptions& options, std::ostream& out, std::o
   } else {
     config = readSimulationConfig(options.config);
   }
-  std::error_code error;
-  if (std::filesystem::exists(options.out, error)) {
-    if (!std::filesystem::is_directory(options.out, error)) {
-      err << "error: " << options.out.string() << " exists and is not a folder\n";
-      return 1;
-    }
-    if (!std::filesystem::is_empty(options.out, error) && !options.force) {
-      err << "error: " << options.out.string()
-          << " is not empty; pass --force to replace it (its contents will be deleted)\n";
-      return 1;
-    }
-  }
+  if (!outputFolderUsable(options.out, options.force, err)) return 1;
   out << "simulating '" << config.name << "' (preset " << config.preset << ", seed " << config.seed
       << ")" << std::endl;
   const SimulationSummary summary = simulateSurvey(config, options.out, out);

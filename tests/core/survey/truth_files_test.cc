@@ -6,25 +6,15 @@
 #include <random>
 
 #include "core/util/input_error.h"
+#include "tests/support/expect_input_error.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
 
+using testing::expectInputError;
 using testing::TempFolder;
 using testing::writeText;
-
-// Expects `read` to throw InputError whose what() is exactly "<file>:<rest>".
-template <typename Read>
-void expectInputError(Read read, const std::filesystem::path& file, const std::string& rest) {
-  try {
-    read();
-    FAIL() << "no InputError; expected " << file.string() << ":" << rest;
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), file.string() + ":" + rest);
-    EXPECT_EQ(e.file(), file);
-  }
-}
 
 template <typename Call>
 std::string invalidArgumentMessage(Call call) {
