@@ -312,20 +312,29 @@ MeshRayCaster& MeshRayCaster::operator=(MeshRayCaster&&) noexcept = default;
 
 RayHit MeshRayCaster::intersect(const Ray& ray) const { return scene_->intersect(ray); }
 
-void MeshRayCaster::intersect(std::span<const Ray> rays, std::span<RayHit> hits) const {
-  if (rays.size() != hits.size()) {
-    throw std::invalid_argument("MeshRayCaster::intersect: expected as many hits as rays, got " +
-                                std::to_string(hits.size()) + " hits for " +
-                                std::to_string(rays.size()) + " rays");
-  }
-  // Embree's ray-stream API with the COHERENT hint gathers neighbouring rays
-  // into SIMD packets that traverse the BVH together: 3.4x the rays per
-  // second of a loop of rtcIntersect1 for camera rays, and no loss for
-  // scattered rays (benchmarks/raycast_bench.cc). The rays go through a fixed
-  // stack buffer, so a batch allocates nothing; rays with an empty segment
-  // are left out of it.
+namespace {
+
+// The Embree ray of a stream entry, reset for a new query.
+RTCRay& streamRay(RTCRayHit& entry) {
+  entry.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  entry.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  return entry.ray;
+}
+RTCRay& streamRay(RTCRay& entry) { return entry; }
+
+// Feeds `rays` to Embree's ray-stream API with the COHERENT hint, which
+// gathers neighbouring rays into SIMD packets that traverse the BVH
+// together: 3.4x the rays per second of a loop of single-ray queries for
+// camera rays, and no loss for scattered rays (benchmarks/raycast_bench.cc).
+// The rays go through a fixed stack buffer, so a batch allocates nothing.
+// A ray with an empty segment is left out and reported to `empty(i)`;
+// `trace(context, stream, count)` runs the query on a chunk and
+// `collect(i, entry)` reads ray i's result.
+template <class Entry, class Empty, class Trace, class Collect>
+void traceInChunks(std::span<const Ray> rays, const Eigen::Vector3d& offset, Empty empty,
+                   Trace trace, Collect collect) {
   constexpr std::size_t kChunk = 256;
-  alignas(64) RTCRayHit stream[kChunk];
+  alignas(64) Entry stream[kChunk];
   std::size_t ray_of[kChunk];
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -334,26 +343,36 @@ void MeshRayCaster::intersect(std::span<const Ray> rays, std::span<RayHit> hits)
   while (next < rays.size()) {
     std::size_t count = 0;
     for (; next < rays.size() && count < kChunk; ++next) {
-      RTCRayHit& embree = stream[count];
-      if (!toEmbreeRay(rays[next], scene_->offset, &embree.ray)) {
-        hits[next] = RayHit{};
+      if (!toEmbreeRay(rays[next], offset, &streamRay(stream[count]))) {
+        empty(next);
         continue;
       }
-      embree.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      embree.hit.primID = RTC_INVALID_GEOMETRY_ID;
       ray_of[count++] = next;
     }
     if (count == 0) continue;
-    rtcIntersect1M(scene_->handle, &context, stream, static_cast<unsigned>(count),
-                   sizeof(RTCRayHit));
-    throwIfEmbreeError("rtcIntersect1M");
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t i = ray_of[k];
-      hits[i] = stream[k].hit.geomID == RTC_INVALID_GEOMETRY_ID
-                    ? RayHit{}
-                    : scene_->refine(rays[i], stream[k]);
-    }
+    trace(&context, stream, static_cast<unsigned>(count));
+    for (std::size_t k = 0; k < count; ++k) collect(ray_of[k], stream[k]);
   }
+}
+
+}  // namespace
+
+void MeshRayCaster::intersect(std::span<const Ray> rays, std::span<RayHit> hits) const {
+  if (rays.size() != hits.size()) {
+    throw std::invalid_argument("MeshRayCaster::intersect: expected as many hits as rays, got " +
+                                std::to_string(hits.size()) + " hits for " +
+                                std::to_string(rays.size()) + " rays");
+  }
+  traceInChunks<RTCRayHit>(
+      rays, scene_->offset, [&](std::size_t i) { hits[i] = RayHit{}; },
+      [&](RTCIntersectContext* context, RTCRayHit* stream, unsigned count) {
+        rtcIntersect1M(scene_->handle, context, stream, count, sizeof(RTCRayHit));
+        throwIfEmbreeError("rtcIntersect1M");
+      },
+      [&](std::size_t i, const RTCRayHit& entry) {
+        hits[i] = entry.hit.geomID == RTC_INVALID_GEOMETRY_ID ? RayHit{}
+                                                              : scene_->refine(rays[i], entry);
+      });
 }
 
 bool MeshRayCaster::occluded(const Ray& ray) const {
@@ -373,32 +392,17 @@ void MeshRayCaster::occluded(std::span<const Ray> rays, std::span<std::uint8_t> 
         "MeshRayCaster::occluded: expected as many results as rays, got " +
         std::to_string(occluded.size()) + " results for " + std::to_string(rays.size()) + " rays");
   }
-  // As in intersect(): the stream API with the COHERENT hint, through a
-  // fixed stack buffer. Shadow rays from one image row towards one lamp are
-  // coherent enough for Embree's packets to pay off.
-  constexpr std::size_t kChunk = 256;
-  alignas(64) RTCRay stream[kChunk];
-  std::size_t ray_of[kChunk];
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  std::size_t next = 0;
-  while (next < rays.size()) {
-    std::size_t count = 0;
-    for (; next < rays.size() && count < kChunk; ++next) {
-      if (!toEmbreeRay(rays[next], scene_->offset, &stream[count])) {
-        occluded[next] = 0;
-        continue;
-      }
-      ray_of[count++] = next;
-    }
-    if (count == 0) continue;
-    rtcOccluded1M(scene_->handle, &context, stream, static_cast<unsigned>(count), sizeof(RTCRay));
-    throwIfEmbreeError("rtcOccluded1M");
-    for (std::size_t k = 0; k < count; ++k) {
-      occluded[ray_of[k]] = stream[k].tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
-    }
-  }
+  // Shadow rays from one image row towards one lamp are coherent enough for
+  // the stream's packets to pay off.
+  traceInChunks<RTCRay>(
+      rays, scene_->offset, [&](std::size_t i) { occluded[i] = 0; },
+      [&](RTCIntersectContext* context, RTCRay* stream, unsigned count) {
+        rtcOccluded1M(scene_->handle, context, stream, count, sizeof(RTCRay));
+        throwIfEmbreeError("rtcOccluded1M");
+      },
+      [&](std::size_t i, const RTCRay& entry) {
+        occluded[i] = entry.tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+      });
 }
 
 Eigen::AlignedBox3d MeshRayCaster::bounds() const { return scene_->bounds; }

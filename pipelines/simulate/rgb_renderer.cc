@@ -86,6 +86,7 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   struct Buffers {
     std::vector<Ray> rays;
     std::vector<RayHit> hits;
+    std::vector<Eigen::Vector3d> points_W;
     std::vector<LampLighting> lighting;
     std::vector<Ray> shadow_rays;
     std::vector<std::pair<int, int>> shadow_of;  // (ray, lamp) of each shadow ray
@@ -95,6 +96,7 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   Buffers& b = buffers;
   b.rays.resize(count);
   b.hits.resize(count);
+  b.points_W.resize(count);
   b.lighting.resize(count);
   b.shadow_rays.clear();
   b.shadow_of.clear();
@@ -109,8 +111,9 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   const LampRig::Posed lamps = context_.lamps->posed(T_W_B);
   for (int i = 0; i < count; ++i) {
     if (!b.hits[i].hit()) continue;
-    const Eigen::Vector3d p_W = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
-    b.lighting[i] = context_.lamps->lightUnshadowed(lamps, p_W, b.hits[i].normal, &shadow_rays);
+    b.points_W[i] = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
+    b.lighting[i] =
+        context_.lamps->lightUnshadowed(lamps, b.points_W[i], b.hits[i].normal, &shadow_rays);
     if (!context_.shadows) continue;
     for (int l = 0; l < b.lighting[i].count; ++l) {
       if (b.lighting[i].weight[l] <= 0.0) continue;
@@ -130,8 +133,7 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
       out[i].setZero();
       continue;
     }
-    const Eigen::Vector3d p_W = b.rays[i].origin + b.hits[i].distance * b.rays[i].direction;
-    out[i] = shade(p_W, b.hits[i], b.lighting[i]);
+    out[i] = shade(b.points_W[i], b.hits[i], b.lighting[i]);
   }
 }
 

@@ -81,6 +81,7 @@ void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line
   out.centre_hits_W.assign(samples, Eigen::Vector3d::Constant(
                                         std::numeric_limits<double>::quiet_NaN()));
   const Eigen::Matrix3d R_W_U = T_W_U.q.toRotationMatrix();
+  const LampRig::Posed lamps = context_.lamps->posed(T_W_B);
   constexpr int kChunk = 64;
   const int chunks = (samples + kChunk - 1) / kChunk;
   tbb::parallel_for(0, chunks, [&](int chunk) {
@@ -115,7 +116,7 @@ void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line
         const Abundances a = context_.materials->abundances(p_W, context_.kindOf(hit.triangle));
         const Eigen::Map<const Eigen::Matrix<float, kEndmemberCount, 1>> a_vec(a.data());
         const LampLighting lighting =
-            context_.lamps->light(T_W_B, p_W, hit.normal, context_.shadowCaster());
+            context_.lamps->light(lamps, p_W, hit.normal, context_.shadowCaster());
         for (int l = 0; l < lighting.count; ++l) {
           if (lighting.weight[l] <= 0.0) continue;
           w[l] += float(lighting.weight[l]) * a_vec;

@@ -84,8 +84,13 @@ LampLighting LampRig::lightUnshadowed(const Posed& lamps, const Eigen::Vector3d&
 
 LampLighting LampRig::light(const SE3d& T_W_B, const Eigen::Vector3d& p_W,
                             const Eigen::Vector3d& n_W, const MeshRayCaster* shadow_caster) const {
+  return light(posed(T_W_B), p_W, n_W, shadow_caster);
+}
+
+LampLighting LampRig::light(const Posed& lamps, const Eigen::Vector3d& p_W,
+                            const Eigen::Vector3d& n_W, const MeshRayCaster* shadow_caster) const {
   std::array<Ray, LampLighting::kMaxLamps> shadow_rays;
-  LampLighting lighting = lightUnshadowed(posed(T_W_B), p_W, n_W, &shadow_rays);
+  LampLighting lighting = lightUnshadowed(lamps, p_W, n_W, &shadow_rays);
   if (shadow_caster == nullptr) return lighting;
   for (int l = 0; l < lighting.count; ++l) {
     if (lighting.weight[l] > 0.0 && shadow_caster->occluded(shadow_rays[l])) lighting.weight[l] = 0.0;

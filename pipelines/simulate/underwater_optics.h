@@ -62,6 +62,9 @@ class LampRig {
   // contribute nothing.
   LampLighting light(const SE3d& T_W_B, const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W,
                      const MeshRayCaster* shadow_caster) const;
+  // The same with the lamps already posed (once per frame or line).
+  LampLighting light(const Posed& lamps, const Eigen::Vector3d& p_W, const Eigen::Vector3d& n_W,
+                     const MeshRayCaster* shadow_caster) const;
   // light() without shadows, plus the shadow ray of every lamp that lights
   // the point (weight > 0): from p_W towards the lamp, skipping 2 mm at both
   // ends so it finds neither the surface it starts on nor the lamp. For

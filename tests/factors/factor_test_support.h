@@ -32,6 +32,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/geometry/camera_parameters.h"
 #include "core/geometry/se3.h"
 #include "core/geometry/so3.h"
 
@@ -200,6 +201,19 @@ inline Eigen::Vector3d randomVector(std::mt19937& rng, const Eigen::Vector3d& lo
   Eigen::Vector3d v;
   for (int i = 0; i < 3; ++i) v[i] = std::uniform_real_distribution<double>(low[i], high[i])(rng);
   return v;
+}
+
+// The undistorted 960x540 pinhole camera the reprojection tests share
+// (fx != fy, so a swapped axis shows).
+inline PinholeRadtanParameters pinholeTestCamera() {
+  PinholeRadtanParameters p;
+  p.width = 960;
+  p.height = 540;
+  p.fx = 800.0;
+  p.fy = 700.0;
+  p.cx = 480.0;
+  p.cy = 270.0;
+  return p;
 }
 
 }  // namespace hsmap::test

@@ -20,16 +20,7 @@ using test::poseBlock;
 using test::tangentJacobiansMatchNumeric;
 using test::vectorBlock;
 
-PinholeRadtanParameters undistortedCamera() {
-  PinholeRadtanParameters p;
-  p.width = 960;
-  p.height = 540;
-  p.fx = 800.0;
-  p.fy = 700.0;
-  p.cx = 480.0;
-  p.cy = 270.0;
-  return p;
-}
+PinholeRadtanParameters undistortedCamera() { return test::pinholeTestCamera(); }
 
 PinholeRadtanParameters distortedCamera() {
   PinholeRadtanParameters p = undistortedCamera();

@@ -22,16 +22,7 @@ using test::vectorBlock;
 constexpr double kT0 = 2.0;
 constexpr double kDt = 0.1;
 
-PinholeRadtanParameters camera() {
-  PinholeRadtanParameters p;
-  p.width = 960;
-  p.height = 540;
-  p.fx = 800.0;
-  p.fy = 700.0;
-  p.cx = 480.0;
-  p.cy = 270.0;
-  return p;
-}
+PinholeRadtanParameters camera() { return test::pinholeTestCamera(); }
 
 PinholeRadtanParameters distortedCamera() {
   PinholeRadtanParameters p = camera();
