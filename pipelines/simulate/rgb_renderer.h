@@ -37,8 +37,6 @@ class RgbRenderer {
   // Frame `frame_index` seen from T_W_C (the body pose T_W_B lights the scene).
   cv::Mat render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const;
 
-  double exposureGain() const { return gain_; }
-
  private:
   RenderContext context_;
   SimulatedRgbConfig config_;

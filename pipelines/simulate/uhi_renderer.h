@@ -41,10 +41,6 @@ class UhiRenderer {
   void render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line_index,
               UhiLineImage& out) const;
 
-  const std::vector<double>& wavelengths() const { return wavelengths_nm_; }
-  const Eigen::ArrayXf& attenuationPerM() const { return attenuation_; }
-  double exposureGain() const { return gain_; }
-
  private:
   RenderContext context_;
   SimulatedUhiConfig config_;
