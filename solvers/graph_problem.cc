@@ -185,11 +185,11 @@ std::shared_ptr<ceres::ParameterBlockOrdering> GraphProblem::schurOrdering() con
   return ordering;
 }
 
-std::map<std::string, FactorTypeCost> GraphProblem::costByFactorType(int num_threads) const {
-  std::map<std::string, FactorTypeCost> costs;
-  if (residual_blocks_.empty()) return costs;
+std::vector<FactorEvaluation> GraphProblem::evaluateFactors(int num_threads) const {
+  std::vector<FactorEvaluation> evaluations;
+  if (residual_blocks_.empty()) return evaluations;
   // One multi-threaded evaluation of every whitened residual without the
-  // loss; the loss is applied here per factor, so outliers can be counted.
+  // loss; the loss is applied here per factor, so outliers can be told apart.
   ceres::Problem::EvaluateOptions evaluate_options;
   evaluate_options.residual_blocks = residual_blocks_;
   evaluate_options.apply_loss_function = false;
@@ -199,6 +199,7 @@ std::map<std::string, FactorTypeCost> GraphProblem::costByFactorType(int num_thr
   if (!problem_->Evaluate(evaluate_options, &total, &residuals, nullptr, nullptr)) {
     throw std::runtime_error("GraphProblem: a factor failed to evaluate at the current values");
   }
+  evaluations.resize(graph_.size());
   std::size_t offset = 0;
   for (FactorGraph::FactorIndex index = 0; index < graph_.size(); ++index) {
     const Factor& factor = *graph_.factor(index);
@@ -207,17 +208,29 @@ std::map<std::string, FactorTypeCost> GraphProblem::costByFactorType(int num_thr
     for (int i = 0; i < dimension; ++i) squared_norm += residuals[offset + i] * residuals[offset + i];
     offset += static_cast<std::size_t>(dimension);
 
-    FactorTypeCost& entry = costs[factor.name()];
-    ++entry.count;
+    FactorEvaluation& evaluation = evaluations[index];
+    evaluation.whitened_norm = std::sqrt(squared_norm);
     const ceres::LossFunction* loss = factor_losses_[index];
     if (loss == nullptr) {
-      entry.cost += 0.5 * squared_norm;
+      evaluation.cost = 0.5 * squared_norm;
     } else {
       double rho[3];
       loss->Evaluate(squared_norm, rho);
-      entry.cost += 0.5 * rho[0];
-      if (std::sqrt(squared_norm) > factor.robustLoss().scale) ++entry.beyond_loss_scale;
+      evaluation.cost = 0.5 * rho[0];
+      evaluation.beyond_loss_scale = evaluation.whitened_norm > factor.robustLoss().scale;
     }
+  }
+  return evaluations;
+}
+
+std::map<std::string, FactorTypeCost> GraphProblem::costByFactorType(int num_threads) const {
+  std::map<std::string, FactorTypeCost> costs;
+  const std::vector<FactorEvaluation> evaluations = evaluateFactors(num_threads);
+  for (FactorGraph::FactorIndex index = 0; index < evaluations.size(); ++index) {
+    FactorTypeCost& entry = costs[graph_.factor(index)->name()];
+    ++entry.count;
+    entry.cost += evaluations[index].cost;
+    if (evaluations[index].beyond_loss_scale) ++entry.beyond_loss_scale;
   }
   return costs;
 }

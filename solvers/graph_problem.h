@@ -27,9 +27,9 @@
 //     them), or PosePriorFactor.
 //
 // Schur ordering. schurOrdering() puts landmarks (VariableKind::landmark)
-// into the first elimination group so SPARSE_SCHUR / ITERATIVE_SCHUR
-// eliminate them and factor the reduced camera system (poses, spline, T_C_U,
-// d). A Schur group must be an independent set (no factor between two of its
+// into the first elimination group so SPARSE_SCHUR, DENSE_SCHUR and
+// ITERATIVE_SCHUR eliminate them and factor the reduced camera system
+// (poses, spline, T_C_U, d). A Schur group must be an independent set (no factor between two of its
 // members): a landmark that shares a factor with a landmark already in the
 // group stays in the second group. Constant landmarks are not eliminated.
 //
@@ -81,6 +81,17 @@ struct GraphProblemOptions {
   std::vector<VariableBound> bounds;
 };
 
+// One factor at the current values.
+struct FactorEvaluation {
+  // |R r|: the norm of the whitened residual, in sigmas.
+  double whitened_norm = 0.0;
+  // 0.5 rho(|R r|^2): what the solver minimises.
+  double cost = 0.0;
+  // The factor has a robust loss and whitened_norm exceeds the loss scale:
+  // the solver down-weights it as an outlier.
+  bool beyond_loss_scale = false;
+};
+
 // Cost of the factors of one type at the current values.
 struct FactorTypeCost {
   std::size_t count = 0;
@@ -120,8 +131,13 @@ class GraphProblem {
   std::shared_ptr<ceres::ParameterBlockOrdering> schurOrdering() const;
   std::size_t numEliminatedLandmarks() const { return eliminated_landmarks_.size(); }
 
-  // Cost per factor type (Factor::name()) at the current values; evaluated by
-  // Ceres with `num_threads` threads.
+  // Every factor at the current values, in graph order: one evaluation of
+  // all whitened residuals by Ceres with `num_threads` threads, the robust
+  // loss applied here per factor. Throws std::runtime_error when a factor
+  // cannot be evaluated. costByFactorType() and factorsBeyondLossScale()
+  // (robust_outliers.h) are summaries of it.
+  std::vector<FactorEvaluation> evaluateFactors(int num_threads = 1) const;
+  // Cost per factor type (Factor::name()) at the current values.
   std::map<std::string, FactorTypeCost> costByFactorType(int num_threads = 1) const;
 
  private:

@@ -49,6 +49,17 @@ std::string describeLinearSolver(const ceres::Solver::Summary& summary) {
                      summary.sparse_linear_algebra_library_type) +
                  ")";
       }
+    case ceres::DENSE_SCHUR:
+    case ceres::DENSE_QR:
+    case ceres::DENSE_NORMAL_CHOLESKY:
+      switch (summary.dense_linear_algebra_library_type) {
+        case ceres::EIGEN: return text + " (Eigen)";
+        default:
+          return text + " (" +
+                 ceres::DenseLinearAlgebraLibraryTypeToString(
+                     summary.dense_linear_algebra_library_type) +
+                 ")";
+      }
     case ceres::ITERATIVE_SCHUR:
     case ceres::CGNR:
       return text + " (" + ceres::PreconditionerTypeToString(summary.preconditioner_type_used) +

@@ -32,10 +32,11 @@ void SolverOptions::validate() const {
     case LinearSolver::sparse_schur:
     case LinearSolver::iterative_schur:
     case LinearSolver::sparse_normal_cholesky:
+    case LinearSolver::dense_schur:
       break;
     default:
       invalid("linear_solver", static_cast<int>(linear_solver),
-              "one of sparse_schur, iterative_schur, sparse_normal_cholesky");
+              "one of sparse_schur, iterative_schur, sparse_normal_cholesky, dense_schur");
   }
 }
 
@@ -62,6 +63,10 @@ ceres::Solver::Options SolverOptions::toCeres() const {
       options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
       options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
       break;
+    case LinearSolver::dense_schur:
+      options.linear_solver_type = ceres::DENSE_SCHUR;
+      options.dense_linear_algebra_library_type = ceres::EIGEN;
+      break;
   }
   options.max_num_iterations = max_iterations;
   options.function_tolerance = function_tolerance;
@@ -81,6 +86,7 @@ const char* toString(SolverOptions::LinearSolver solver) {
     case SolverOptions::LinearSolver::sparse_schur: return "sparse_schur";
     case SolverOptions::LinearSolver::iterative_schur: return "iterative_schur";
     case SolverOptions::LinearSolver::sparse_normal_cholesky: return "sparse_normal_cholesky";
+    case SolverOptions::LinearSolver::dense_schur: return "dense_schur";
   }
   return "?";
 }
@@ -88,11 +94,13 @@ const char* toString(SolverOptions::LinearSolver solver) {
 SolverOptions::LinearSolver parseLinearSolver(const std::string& name) {
   for (const auto solver : {SolverOptions::LinearSolver::sparse_schur,
                             SolverOptions::LinearSolver::iterative_schur,
-                            SolverOptions::LinearSolver::sparse_normal_cholesky}) {
+                            SolverOptions::LinearSolver::sparse_normal_cholesky,
+                            SolverOptions::LinearSolver::dense_schur}) {
     if (name == toString(solver)) return solver;
   }
-  throw std::invalid_argument("unknown linear solver \"" + name +
-                              "\": expected sparse_schur, iterative_schur or sparse_normal_cholesky");
+  throw std::invalid_argument(
+      "unknown linear solver \"" + name +
+      "\": expected sparse_schur, iterative_schur, sparse_normal_cholesky or dense_schur");
 }
 
 }  // namespace hsmap

@@ -141,7 +141,8 @@ INSTANTIATE_TEST_SUITE_P(
         std::make_pair(SolverOptions::LinearSolver::iterative_schur,
                        "ITERATIVE_SCHUR (SCHUR_JACOBI preconditioner)"),
         std::make_pair(SolverOptions::LinearSolver::sparse_normal_cholesky,
-                       "SPARSE_NORMAL_CHOLESKY (SuiteSparse)")));
+                       "SPARSE_NORMAL_CHOLESKY (SuiteSparse)"),
+        std::make_pair(SolverOptions::LinearSolver::dense_schur, "DENSE_SCHUR (Eigen)")));
 
 // 10 poses along a chain: a prior on x0 and relative measurements, all exact.
 struct PoseChain {
@@ -176,7 +177,8 @@ struct PoseChain {
 
 TEST(GraphSolver, RecoversAPoseChainThroughTheSe3Manifold) {
   for (const auto solver : {SolverOptions::LinearSolver::sparse_schur,
-                            SolverOptions::LinearSolver::sparse_normal_cholesky}) {
+                            SolverOptions::LinearSolver::sparse_normal_cholesky,
+                            SolverOptions::LinearSolver::dense_schur}) {
     PoseChain chain(21);
     Values values = chain.initial;
     ASSERT_GT(chain.maxError(values), 0.1);

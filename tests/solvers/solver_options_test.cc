@@ -60,6 +60,12 @@ TEST(SolverOptions, PresetsMapToTheirCeresLinearSolvers) {
   EXPECT_EQ(ceres_options.linear_solver_type, ceres::SPARSE_NORMAL_CHOLESKY);
   EXPECT_EQ(ceres_options.sparse_linear_algebra_library_type, ceres::SUITE_SPARSE);
   EXPECT_TRUE(ceres_options.IsValid(&why)) << why;
+
+  options.linear_solver = SolverOptions::LinearSolver::dense_schur;
+  ceres_options = options.toCeres();
+  EXPECT_EQ(ceres_options.linear_solver_type, ceres::DENSE_SCHUR);
+  EXPECT_EQ(ceres_options.dense_linear_algebra_library_type, ceres::EIGEN);
+  EXPECT_TRUE(ceres_options.IsValid(&why)) << why;
 }
 
 TEST(SolverOptions, ValidateNamesTheFieldTheValueAndWhatIsAllowed) {
@@ -90,16 +96,18 @@ TEST(SolverOptions, ValidateNamesTheFieldTheValueAndWhatIsAllowed) {
 TEST(SolverOptions, LinearSolverNamesRoundTrip) {
   for (const auto solver : {SolverOptions::LinearSolver::sparse_schur,
                             SolverOptions::LinearSolver::iterative_schur,
-                            SolverOptions::LinearSolver::sparse_normal_cholesky}) {
+                            SolverOptions::LinearSolver::sparse_normal_cholesky,
+                            SolverOptions::LinearSolver::dense_schur}) {
     EXPECT_EQ(parseLinearSolver(toString(solver)), solver);
   }
+  EXPECT_STREQ(toString(SolverOptions::LinearSolver::dense_schur), "dense_schur");
   try {
     parseLinearSolver("dense_qr");
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(),
-                 "unknown linear solver \"dense_qr\": expected sparse_schur, iterative_schur or "
-                 "sparse_normal_cholesky");
+                 "unknown linear solver \"dense_qr\": expected sparse_schur, iterative_schur, "
+                 "sparse_normal_cholesky or dense_schur");
   }
 }
 
