@@ -13,6 +13,8 @@
 
 #include "core/io/atomic_file.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
+#include "core/util/text_file.h"
 
 namespace hsmap {
 namespace {
@@ -66,7 +68,7 @@ class HeaderParser {
     throw InputError(path_, InputError::atLine(line), detail);
   }
   [[noreturn]] void failField(const Field& field, const std::string& detail) const {
-    failAt(field.line, "key '" + normaliseKey(field.key_text) + "': " + detail);
+    failAt(field.line, "key " + quoteForMessage(normaliseKey(field.key_text), 40) + ": " + detail);
   }
 
   // Splits the text into fields and comments; checks the magic line.
@@ -78,7 +80,7 @@ class HeaderParser {
       lines.push_back(std::move(line));
     }
     const std::string first = lines.empty() ? std::string() : std::string(trim(lines[0]));
-    if (first != "ENVI") failAt(1, "expected 'ENVI' on line 1, found '" + first + "'");
+    if (first != "ENVI") failAt(1, "expected 'ENVI' on line 1, found " + quoteForMessage(first));
 
     for (std::size_t i = 1; i < lines.size(); ++i) {
       const long long line_number = static_cast<long long>(i) + 1;
@@ -90,7 +92,7 @@ class HeaderParser {
       }
       const std::size_t equals = line.find('=');
       if (equals == std::string_view::npos) {
-        failAt(line_number, "expected 'key = value' or a ';' comment, found '" + std::string(line) + "'");
+        failAt(line_number, "expected 'key = value' or a ';' comment, found " + quoteForMessage(line));
       }
       Field field;
       field.key_text = std::string(trim(line.substr(0, equals)));
@@ -112,15 +114,16 @@ class HeaderParser {
         const std::size_t close = value.find('}');
         if (!trim(std::string_view(value).substr(close + 1)).empty()) {
           failAt(static_cast<long long>(i) + 1,
-                 "key '" + normaliseKey(field.key_text) + "': unexpected text after '}': '" +
-                     std::string(trim(std::string_view(value).substr(close + 1))) + "'");
+                 "key " + quoteForMessage(normaliseKey(field.key_text), 40) +
+                     ": unexpected text after '}': " +
+                     quoteForMessage(trim(std::string_view(value).substr(close + 1))));
         }
       }
       field.value = std::move(value);
       const std::string key = normaliseKey(field.key_text);
       const auto [it, inserted] = index_.emplace(key, fields_.size());
       if (!inserted) {
-        failAt(line_number, "key '" + key + "' appears twice (first on line " +
+        failAt(line_number, "key " + quoteForMessage(key, 40) + " appears twice (first on line " +
                                 std::to_string(fields_[it->second].line) + ")");
       }
       fields_.push_back(std::move(field));
@@ -152,7 +155,7 @@ class HeaderParser {
 
   std::vector<std::string_view> listItems(const Field& field) const {
     if (field.value.empty() || field.value.front() != '{') {
-      failField(field, "expected a list in braces '{ ... }', found '" + field.value + "'");
+      failField(field, "expected a list in braces '{ ... }', found " + quoteForMessage(field.value));
     }
     std::vector<std::string_view> items;
     std::string_view rest = inner(field);
@@ -174,17 +177,20 @@ class HeaderParser {
     return result.ec == std::errc() && result.ptr == text.data() + text.size() && !text.empty();
   }
 
+  // A finite number: from_chars also reads "nan" and "inf", which no header
+  // quantity (wavelength, width, map position) can be.
   static bool parseDouble(std::string_view text, double& value) {
     text = trim(text);
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
     const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-    return result.ec == std::errc() && result.ptr == text.data() + text.size() && !text.empty();
+    return result.ec == std::errc() && result.ptr == text.data() + text.size() && !text.empty() &&
+           std::isfinite(value);
   }
 
   int positiveInt(const Field& field) const {
     int value = 0;
     if (!parseInteger(field.value, value) || value <= 0) {
-      failField(field, "expected a positive integer, found '" + field.value + "'");
+      failField(field, "expected a positive integer, found " + quoteForMessage(field.value));
     }
     return value;
   }
@@ -194,8 +200,8 @@ class HeaderParser {
     for (const std::string_view item : listItems(field)) {
       double value = 0;
       if (!parseDouble(item, value)) {
-        failField(field, "expected a number as item " + std::to_string(values.size() + 1) +
-                             ", found '" + std::string(item) + "'");
+        failField(field, "expected a finite number as item " + std::to_string(values.size() + 1) +
+                             ", found " + quoteForMessage(item));
       }
       values.push_back(value);
     }
@@ -226,8 +232,8 @@ class HeaderParser {
                             "northing", "pixel size x", "pixel size y"};
     for (int k = 0; k < 6; ++k) {
       if (!parseDouble(items[k + 1], *numbers[k])) {
-        failField(field, std::string("expected a number for ") + names[k] + " (item " +
-                             std::to_string(k + 2) + "), found '" + std::string(items[k + 1]) + "'");
+        failField(field, std::string("expected a finite number for ") + names[k] + " (item " +
+                             std::to_string(k + 2) + "), found " + quoteForMessage(items[k + 1]));
       }
     }
     // Positional items after the numbers: [zone, hemisphere][, datum].
@@ -240,8 +246,8 @@ class HeaderParser {
       }
       const std::string name = normaliseKey(items[k].substr(0, equals));
       if (name != "units") {
-        failField(field, "unsupported map info item '" + std::string(items[k]) +
-                             "' (only units=... is understood; rotated rasters are not supported)");
+        failField(field, "unsupported map info item " + quoteForMessage(items[k]) +
+                             " (only units=... is understood; rotated rasters are not supported)");
       }
       info.units = std::string(trim(items[k].substr(equals + 1)));
     }
@@ -253,18 +259,18 @@ class HeaderParser {
       }
       if (!parseInteger(positional[0], info.zone) || (is_utm && (info.zone < 1 || info.zone > 60))) {
         failField(field, std::string("expected a ") + (is_utm ? "UTM zone 1..60" : "zone number") +
-                             ", found '" + std::string(positional[0]) + "'");
+                             ", found " + quoteForMessage(positional[0]));
       }
       const std::string hemisphere = lowercase(positional[1]);
       if (hemisphere != "north" && hemisphere != "south") {
-        failField(field, "expected North or South, found '" + std::string(positional[1]) + "'");
+        failField(field, "expected North or South, found " + quoteForMessage(positional[1]));
       }
       info.north = hemisphere == "north";
       next = 2;
     }
     if (next < positional.size()) info.datum = std::string(positional[next++]);
     if (next < positional.size()) {
-      failField(field, "unexpected map info item '" + std::string(positional[next]) + "'");
+      failField(field, "unexpected map info item " + quoteForMessage(positional[next]));
     }
     return info;
   }
@@ -347,20 +353,48 @@ std::uint64_t EnviHeader::dataBytes() const {
          static_cast<std::uint64_t>(bands) * bytesPerValue(data_type);
 }
 
-EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(hdr_path, ec)) throw InputError(hdr_path, "", "file does not exist");
-  if (std::filesystem::is_directory(hdr_path, ec)) {
-    throw InputError(hdr_path, "", "expected an ENVI header file, found a directory");
-  }
-  std::ifstream file(hdr_path, std::ios::binary);
-  if (!file) throw InputError(hdr_path, "", "cannot open for reading");
-  std::ostringstream text;
-  text << file.rdbuf();
+namespace {
 
+// The sizes of a header multiply into byte counts and offsets that a reader
+// seeks to. In 64-bit arithmetic they can wrap around (a header offset of
+// 2^64 - 806400 plus 806400 bytes of data is 0), so every product and sum is
+// checked, against the largest offset a file can have (off_t: 2^63 - 1).
+void checkDataSize(const HeaderParser& parser, const EnviHeader& header, const Field& bands) {
+  constexpr std::uint64_t kLargestFile = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+  std::uint64_t bytes = bytesPerValue(header.data_type);
+  const std::uint64_t factors[] = {static_cast<std::uint64_t>(header.samples),
+                                   static_cast<std::uint64_t>(header.lines),
+                                   static_cast<std::uint64_t>(header.bands)};
+  bool overflow = false;
+  for (const std::uint64_t factor : factors) overflow = overflow || __builtin_mul_overflow(bytes, factor, &bytes);
+  if (overflow || bytes > kLargestFile) {
+    parser.failField(bands, "samples " + std::to_string(header.samples) + " x lines " +
+                                std::to_string(header.lines) + " x bands " +
+                                std::to_string(header.bands) + " x " +
+                                std::to_string(bytesPerValue(header.data_type)) +
+                                " bytes per value is larger than any file can be (2^63 bytes); "
+                                "expected the sizes of a real raster");
+  }
+  std::uint64_t end = 0;
+  if (__builtin_add_overflow(header.header_offset, bytes, &end) || end > kLargestFile) {
+    parser.failField(*parser.find("header offset"),
+                     std::to_string(header.header_offset) + " bytes before " +
+                         std::to_string(bytes) +
+                         " bytes of data is beyond the largest possible file (2^63 bytes); "
+                         "expected the number of bytes that precede the data in the data file");
+  }
+}
+
+}  // namespace
+
+EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
+  return parseEnviHeader(readTextFile(hdr_path, kMaxEnviHeaderBytes), hdr_path);
+}
+
+EnviHeader parseEnviHeader(std::string_view raw, const std::filesystem::path& hdr_path) {
   HeaderParser parser(hdr_path);
   EnviHeader header;
-  parser.tokenise(text.str(), header.comments);
+  parser.tokenise(normaliseText(raw, hdr_path, TextEncoding::any_bytes), header.comments);
 
   const Field& samples = parser.require("samples");
   const Field& lines = parser.require("lines");
@@ -374,8 +408,8 @@ EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
   int code = 0;
   if (!HeaderParser::parseInteger(data_type.value, code) ||
       !(code == 1 || code == 2 || code == 3 || code == 4 || code == 5 || code == 12 || code == 13)) {
-    parser.failField(data_type, std::string("expected ") + kDataTypeChoices + ", found '" +
-                                    data_type.value + "'");
+    parser.failField(data_type, std::string("expected ") + kDataTypeChoices + ", found " +
+                                    quoteForMessage(data_type.value));
   }
   header.data_type = static_cast<EnviDataType>(code);
 
@@ -387,7 +421,7 @@ EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
   } else if (interleave_text == "bip") {
     header.interleave = EnviInterleave::bip;
   } else {
-    parser.failField(interleave, "expected bsq, bil or bip, found '" + interleave.value + "'");
+    parser.failField(interleave, "expected bsq, bil or bip, found " + quoteForMessage(interleave.value));
   }
 
   for (const Field& field : parser.fields()) {
@@ -397,11 +431,12 @@ EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
       continue;
     } else if (key == "header offset") {
       if (!HeaderParser::parseInteger(field.value, header.header_offset)) {
-        parser.failField(field, "expected a non-negative integer, found '" + field.value + "'");
+        parser.failField(field, "expected a non-negative integer, found " + quoteForMessage(field.value));
       }
     } else if (key == "byte order") {
       if (field.value != "0" && field.value != "1") {
-        parser.failField(field, "expected 0 (little endian) or 1 (big endian), found '" + field.value + "'");
+        parser.failField(field, "expected 0 (little endian) or 1 (big endian), found " +
+                                    quoteForMessage(field.value));
       }
       header.byte_order = field.value == "1" ? 1 : 0;
     } else if (key == "file type") {
@@ -412,6 +447,13 @@ EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
     } else if (key == "fwhm") {
       header.fwhm = parser.numberList(field);
       parser.checkPerBand(field, header.fwhm, header.bands);
+      for (std::size_t b = 0; b < header.fwhm.size(); ++b) {
+        if (!(header.fwhm[b] > 0.0)) {
+          parser.failField(field, "expected band widths > 0, found " +
+                                      formatNumber(header.fwhm[b]) + " for band " +
+                                      std::to_string(b + 1));
+        }
+      }
     } else if (key == "band names") {
       for (const std::string_view item : parser.listItems(field)) header.band_names.emplace_back(item);
       parser.checkPerBand(field, header.band_names, header.bands);
@@ -425,6 +467,7 @@ EnviHeader readEnviHeader(const std::filesystem::path& hdr_path) {
       header.other_fields.emplace_back(field.key_text, field.value);
     }
   }
+  checkDataSize(parser, header, bands);
   return header;
 }
 

@@ -16,9 +16,12 @@
 //
 // Checks (each failure is an InputError naming the header, the line of the
 // offending key, or the key itself when it is missing, and what was expected):
-// sizes are positive integers, data type is one of 1 2 3 4 5 12 13, byte
+// sizes are positive integers whose product in bytes, plus the header
+// offset, fits in a file (checked without 64-bit wrap-around), data type is one of 1 2 3 4 5 12 13, byte
 // order is 0 or 1, interleave is bsq/bil/bip, wavelength/fwhm/band names
-// have one entry per band, map info has the fields below.
+// have one entry per band, numbers are finite (no nan/inf), fwhm values are
+// > 0, map info has the fields below. Before parsing, the text goes through
+// normaliseText() (core/util/text_file.h) with TextEncoding::any_bytes.
 //
 // Map info (DATASET.md, "Rasters with a map position"):
 //   {projection, ref_x, ref_y, easting, northing, px_x, px_y[, zone, North|South][, datum][, units=U]}
@@ -36,6 +39,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -93,8 +97,11 @@ struct EnviHeader {
   bool operator==(const EnviHeader&) const = default;
 };
 
-// Throws InputError (file + line or key + expectation).
+// Throws InputError (file + line or key + expectation). The file is read as
+// a regular file of at most kMaxEnviHeaderBytes (core/util/text_file.h).
 EnviHeader readEnviHeader(const std::filesystem::path& hdr_path);
+// The same parser on the header's text `raw`; `hdr_path` names it in errors.
+EnviHeader parseEnviHeader(std::string_view raw, const std::filesystem::path& hdr_path);
 
 // The text of the header as writeEnviHeader writes it. std::invalid_argument
 // for a header that could not be read back (sizes not positive, list sizes not

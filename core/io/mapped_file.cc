@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/util/input_error.h"
+#include "core/util/regular_file.h"
 
 namespace hsmap {
 namespace {
@@ -42,22 +43,10 @@ struct FdGuard {
 }  // namespace
 
 MappedFile::MappedFile(const std::filesystem::path& path, Access access) : path_(path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw InputError(path, "", "file does not exist");
-  if (std::filesystem::is_directory(status)) {
-    throw InputError(path, "", "expected a regular file, found a directory");
-  }
-  const FdGuard fd{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
-  if (fd.fd < 0) {
-    throw InputError(path, "", std::string("cannot open for reading: ") + std::strerror(errno));
-  }
-  struct stat st {};
-  if (::fstat(fd.fd, &st) != 0) {
-    throw InputError(path, "", std::string("cannot read file size: ") + std::strerror(errno));
-  }
-  if (!S_ISREG(st.st_mode)) throw InputError(path, "", "expected a regular file");
-  size_ = static_cast<std::size_t>(st.st_size);
+  // RegularFile: a FIFO or a device is an error, never a hang or an endless read.
+  RegularFile file(path);
+  const FdGuard fd{file.release()};
+  size_ = static_cast<std::size_t>(file.size());
   if (size_ == 0) return;  // mmap refuses empty lengths; an empty map is valid
   void* address = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd.fd, 0);
   if (address == MAP_FAILED) {

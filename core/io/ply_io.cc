@@ -15,6 +15,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/util/input_error.h"
+#include "core/util/regular_file.h"
 
 namespace hsmap {
 namespace {
@@ -175,9 +176,9 @@ void writePly(const std::filesystem::path& path, const PlyMesh& mesh, PlyEncodin
 }
 
 PlyMesh readPly(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "", "file does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "expected a PLY file, found a directory");
+  // A FIFO or a device is an error before any stream blocks on it or reads
+  // it without end.
+  { const RegularFile check(path); }
   const PlyLayout layout = checkHeader(path);
 
   std::vector<Point> points;

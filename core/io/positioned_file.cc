@@ -10,25 +10,15 @@
 #include <utility>
 
 #include "core/util/input_error.h"
+#include "core/util/regular_file.h"
 
 namespace hsmap {
 
 PositionedFile::PositionedFile(const std::filesystem::path& path, Access access) : path_(path) {
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw InputError(path, "", "file does not exist");
-  if (std::filesystem::is_directory(status)) {
-    throw InputError(path, "", "expected a regular file, found a directory");
-  }
-  fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0) throw InputError(path, "", std::string("cannot open for reading: ") + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd_);
-    fd_ = -1;
-    throw InputError(path, "", "expected a regular file");
-  }
-  size_ = static_cast<std::uint64_t>(st.st_size);
+  // RegularFile: a FIFO or a device is an error, never a hang or an endless read.
+  RegularFile file(path);
+  size_ = file.size();
+  fd_ = file.release();
   // A hint for the kernel's read-ahead; failure only changes speed.
   const int advice = access == Access::sequential ? POSIX_FADV_SEQUENTIAL
                      : access == Access::random   ? POSIX_FADV_RANDOM

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/survey/number_text.h"
+#include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
@@ -13,10 +14,29 @@ constexpr double kQuaternionNormTolerance = 1e-3;
 // A few ulps of 1: the squared norm of a normalised quaternion lies within it.
 constexpr double kUnitSquaredNormSlack = 1e-15;
 
+// Physical bounds (survey_config.h): finite is not enough for a focal length.
+constexpr int kMaxImageSide = 65536;
+constexpr int kMaxLineSamples = 1000000;
+constexpr double kMaxFocalPx = 1e6;
+constexpr double kMaxDistortion = 1000.0;
+constexpr double kMaxOffsetM = 100.0;  // between two sensors of one vehicle
+
+std::vector<double> distortionCoefficients(const StrictYamlMap& camera, std::size_t count,
+                                           std::vector<double> default_value) {
+  const std::vector<double> k = camera.numbers("distortion", count, std::move(default_value));
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    if (std::abs(k[i]) > kMaxDistortion) {
+      camera.fail("distortion", "expected coefficients in [-1000, 1000], got " +
+                                    formatDouble(k[i]) + " at position " + std::to_string(i + 1));
+    }
+  }
+  return k;
+}
+
 void requireModel(const StrictYamlMap& camera, const std::string& model) {
   const std::string found = camera.text("model");
   if (found != model) {
-    camera.fail("model", "unsupported camera model '" + found + "'; expected '" + model + "'");
+    camera.fail("model", "unsupported camera model " + quoteForMessage(found) + "; expected '" + model + "'");
   }
 }
 
@@ -28,13 +48,14 @@ PinholeRadtanParameters readPinholeRadtanCamera(const StrictYamlMap& parent,
       parent.map(key, {"model", "width", "height", "fx", "fy", "cx", "cy", "distortion"});
   requireModel(camera, "pinhole-radtan");
   PinholeRadtanParameters parameters;
-  parameters.width = camera.positiveInteger("width");
-  parameters.height = camera.positiveInteger("height");
-  parameters.fx = camera.positiveNumber("fx");
-  parameters.fy = camera.positiveNumber("fy");
-  parameters.cx = camera.number("cx");
-  parameters.cy = camera.number("cy");
-  const std::vector<double> distortion = camera.numbers("distortion", 5, {0, 0, 0, 0, 0});
+  parameters.width = camera.positiveIntegerUpTo("width", kMaxImageSide);
+  parameters.height = camera.positiveIntegerUpTo("height", kMaxImageSide);
+  parameters.fx = camera.positiveNumberUpTo("fx", kMaxFocalPx);
+  parameters.fy = camera.positiveNumberUpTo("fy", kMaxFocalPx);
+  parameters.cx = camera.numberInRange("cx", -kMaxFocalPx, kMaxFocalPx);
+  parameters.cy = camera.numberInRange("cy", -kMaxFocalPx, kMaxFocalPx);
+  const std::vector<double> distortion =
+      distortionCoefficients(camera, 5, {0, 0, 0, 0, 0});
   for (std::size_t i = 0; i < 5; ++i) parameters.distortion[i] = distortion[i];
   return parameters;
 }
@@ -43,10 +64,10 @@ PushbroomParameters readPushbroomCamera(const StrictYamlMap& parent, const std::
   const StrictYamlMap camera = parent.map(key, {"model", "samples", "f", "cx", "distortion"});
   requireModel(camera, "pushbroom");
   PushbroomParameters parameters;
-  parameters.samples = camera.positiveInteger("samples");
-  parameters.f = camera.positiveNumber("f");
-  parameters.cx = camera.number("cx");
-  const std::vector<double> distortion = camera.numbers("distortion", 2, {0, 0});
+  parameters.samples = camera.positiveIntegerUpTo("samples", kMaxLineSamples);
+  parameters.f = camera.positiveNumberUpTo("f", kMaxFocalPx);
+  parameters.cx = camera.numberInRange("cx", -kMaxFocalPx, kMaxFocalPx);
+  const std::vector<double> distortion = distortionCoefficients(camera, 2, {0, 0});
   parameters.distortion = {distortion[0], distortion[1]};
   return parameters;
 }
@@ -67,6 +88,13 @@ RigidTransformConfig readRigidTransform(const StrictYamlMap& map) {
   // renormalising it could flip its last bits.
   if (std::abs(transform.rotation.squaredNorm() - 1.0) > kUnitSquaredNormSlack) {
     transform.rotation.normalize();
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (std::abs(t[i]) > kMaxOffsetM) {
+      map.fail("translation_m", "expected offsets in [-100, 100] m between sensors of one "
+                                "vehicle, got " + formatDouble(t[i]) + " at position " +
+                                std::to_string(i + 1));
+    }
   }
   transform.translation_m = Eigen::Vector3d(t[0], t[1], t[2]);
   return transform;

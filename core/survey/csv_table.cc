@@ -10,6 +10,7 @@
 #include "core/io/atomic_file.h"
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
 #include "core/util/text_file.h"
 
 namespace hsmap {
@@ -39,16 +40,14 @@ std::vector<std::string> splitCells(std::string_view line) {
 }
 
 
-// Splits into lines, dropping a trailing '\r' of each (CRLF files).
+// Splits normalised text (LF line ends only) into lines.
 std::vector<std::string_view> splitLines(std::string_view text) {
   std::vector<std::string_view> lines;
   std::size_t start = 0;
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.push_back(line);
+    lines.push_back(text.substr(start, end - start));
     start = end + 1;
   }
   return lines;
@@ -65,6 +64,29 @@ void requireFiniteForWriting(double value, const char* what) {
     throw std::invalid_argument(std::string("CSV writer: non-finite ") + what);
   }
 }
+
+// Times are seconds on the survey's shared clock (UNIX or GPS seconds, or
+// seconds since the dive started). Beyond 4e9 s a float64 no longer resolves
+// a microsecond, so a larger value is damage, not a time (1e300 would pass
+// every other check).
+constexpr double kMaxAbsTimeS = 4e9;
+
+double timeCell(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
+  const double t = table.number(row, column);
+  if (std::abs(t) > kMaxAbsTimeS) {
+    throw InputError(table.file, InputError::atLine(row.line_number),
+                     "column '" + table.columns[column] + "': expected a time in [-4e9, 4e9] s, got " +
+                         formatDouble(t) +
+                         " (seconds on the survey's clock; a float64 beyond 4e9 s cannot hold "
+                         "microseconds)");
+  }
+  return t;
+}
+
+// Depth d is the height h = -d on WGS-84: from above the highest lake
+// (h ~ 5,000 m) to below the deepest trench (~11,000 m), with margin.
+constexpr double kMinDepthM = -10000.0;
+constexpr double kMaxDepthM = 12000.0;
 
 void checkRange(const CsvTable& table, const CsvTable::Row& row, std::size_t column, double value,
                 double low, double high, const char* what) {
@@ -100,6 +122,11 @@ long long CsvTable::integer(const Row& row, std::size_t column) const {
 
 CsvTable readCsvTable(const std::filesystem::path& file,
                       const std::vector<std::vector<std::string>>& accepted_headers) {
+  return parseCsvTable(readTextFile(file, kMaxCsvBytes), file, accepted_headers);
+}
+
+CsvTable parseCsvTable(std::string_view raw, const std::filesystem::path& file,
+                       const std::vector<std::vector<std::string>>& accepted_headers) {
   if (accepted_headers.empty()) throw std::invalid_argument("readCsvTable: no accepted header");
   std::string expected_headers;
   for (std::size_t i = 0; i < accepted_headers.size(); ++i) {
@@ -109,10 +136,10 @@ CsvTable readCsvTable(const std::filesystem::path& file,
     expected_headers += '\'';
   }
 
-  const std::string text = readTextFile(file);
-  std::string_view body = text;
-  if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);  // UTF-8 byte-order mark
-  std::vector<std::string_view> lines = splitLines(body);
+  // UTF-8 checked, control characters refused, byte-order mark and CR / CRLF
+  // line ends normalised (text_file.h).
+  const std::string text = normaliseText(raw, file, TextEncoding::utf8);
+  std::vector<std::string_view> lines = splitLines(text);
   // Blank lines at the end are harmless (editors add them); drop them.
   while (!lines.empty() && trimBlanks(lines.back()).empty()) lines.pop_back();
   if (lines.empty()) {
@@ -128,7 +155,7 @@ CsvTable readCsvTable(const std::filesystem::path& file,
   if (!header_ok) {
     throw InputError(
         file, InputError::atLine(1),
-        "expected the header " + expected_headers + ", got '" + std::string(lines[0]) + "'");
+        "expected the header " + expected_headers + ", got " + quoteForMessage(lines[0]));
   }
   if (lines.size() == 1) {
     throw InputError(file, InputError::atLine(2),
@@ -174,7 +201,11 @@ void checkTimeOrder(const CsvTable& table, const CsvTable::Row& row, std::size_t
 // ---- rgb/frames.csv -------------------------------------------------------
 
 std::vector<FrameRow> readFramesCsv(const std::filesystem::path& file) {
-  const CsvTable table = readCsvTable(file, {{"file", "t"}});
+  return parseFramesCsv(readTextFile(file, kMaxCsvBytes), file);
+}
+
+std::vector<FrameRow> parseFramesCsv(std::string_view raw, const std::filesystem::path& file) {
+  const CsvTable table = parseCsvTable(raw, file, {{"file", "t"}});
   std::vector<FrameRow> frames;
   frames.reserve(table.rows.size());
   for (const auto& row : table.rows) {
@@ -182,7 +213,7 @@ std::vector<FrameRow> readFramesCsv(const std::filesystem::path& file) {
       throw InputError(file, InputError::atLine(row.line_number),
                        "column 'file': expected an image file name, got an empty cell");
     }
-    const double t = table.number(row, 1);
+    const double t = timeCell(table, row, 1);
     if (!frames.empty()) checkTimeOrder(table, row, 1, frames.back().t, t);
     frames.push_back({row.cells[0], t, row.line_number});
   }
@@ -206,7 +237,11 @@ void writeFramesCsv(const std::filesystem::path& file, const std::vector<FrameRo
 // ---- uhi/lines.csv --------------------------------------------------------
 
 std::vector<double> readLinesCsv(const std::filesystem::path& file) {
-  const CsvTable table = readCsvTable(file, {{"line", "t"}});
+  return parseLinesCsv(readTextFile(file, kMaxCsvBytes), file);
+}
+
+std::vector<double> parseLinesCsv(std::string_view raw, const std::filesystem::path& file) {
+  const CsvTable table = parseCsvTable(raw, file, {{"line", "t"}});
   std::vector<double> times;
   times.reserve(table.rows.size());
   for (const auto& row : table.rows) {
@@ -218,7 +253,7 @@ std::vector<double> readLinesCsv(const std::filesystem::path& file) {
                            " (one row per scan line, counting from 0 in order), got " +
                            std::to_string(line));
     }
-    const double t = table.number(row, 1);
+    const double t = timeCell(table, row, 1);
     if (!times.empty()) checkTimeOrder(table, row, 1, times.back(), t);
     times.push_back(t);
   }
@@ -237,21 +272,31 @@ void writeLinesCsv(const std::filesystem::path& file, const std::vector<double>&
 // ---- nav/ins.csv ----------------------------------------------------------
 
 InsTable readInsCsv(const std::filesystem::path& file) {
-  const CsvTable table = readCsvTable(
-      file,
+  return parseInsCsv(readTextFile(file, kMaxCsvBytes), file);
+}
+
+InsTable parseInsCsv(std::string_view raw, const std::filesystem::path& file) {
+  const CsvTable table = parseCsvTable(
+      raw, file,
       {{"t", "lat", "lon", "depth"}, {"t", "lat", "lon", "depth", "roll", "pitch", "heading"}});
   InsTable ins;
   ins.has_attitude = table.columns.size() == 7;
   ins.fixes.reserve(table.rows.size());
   for (const auto& row : table.rows) {
     InsFix fix;
-    fix.t = table.number(row, 0);
+    fix.t = timeCell(table, row, 0);
+    fix.line_number = row.line_number;
     if (!ins.fixes.empty()) checkTimeOrder(table, row, 0, ins.fixes.back().t, fix.t);
     fix.lat_deg = table.number(row, 1);
     checkRange(table, row, 1, fix.lat_deg, -90.0, 90.0, "a latitude");
     fix.lon_deg = table.number(row, 2);
     checkRange(table, row, 2, fix.lon_deg, -180.0, 180.0, "a longitude");
     fix.depth_m = table.number(row, 3);
+    if (fix.depth_m < kMinDepthM || fix.depth_m > kMaxDepthM) {
+      throw InputError(file, InputError::atLine(row.line_number),
+                       "column 'depth': expected a depth in [-10000, 12000] m, got " +
+                           formatDouble(fix.depth_m));
+    }
     if (ins.has_attitude) {
       fix.roll_deg = table.number(row, 4);
       checkRange(table, row, 4, fix.roll_deg, -180.0, 180.0, "a roll");

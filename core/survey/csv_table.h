@@ -10,11 +10,17 @@
 //   - every data row has exactly as many comma-separated cells as the header;
 //     there is no quoting (no survey column needs a comma); spaces and tabs
 //     around a cell are ignored;
-//   - CRLF line ends and a UTF-8 byte-order mark are tolerated, and so are
-//     blank lines at the end of the file; a blank line followed by more data
+//   - the text checks of core/util/text_file.h come first: UTF-8 only, no
+//     control characters (a NUL in a file name would silently cut it); CRLF
+//     and CR-only line ends and a UTF-8 byte-order mark are tolerated, and so
+//     are blank lines at the end of the file; a blank line followed by more data
 //     is an error, because it usually means a damaged or concatenated file;
 //   - a table without any data row is an error;
-//   - numbers go through number_text.h: NaN and Inf are rejected.
+//   - numbers go through number_text.h: NaN and Inf are rejected; times
+//     (column 't') must lie in [-4e9, 4e9] s (beyond, a float64 cannot hold
+//     microseconds); depths in [-10000, 12000] m.
+// Files are read as regular files of at most kMaxCsvBytes (text_file.h): a
+// FIFO or a device is an error, never a hang.
 // Errors are InputError naming the file and the 1-based line, e.g.
 //   "nav/ins.csv:line 5: column 'lat': expected a finite number, got 'nan'".
 //
@@ -24,6 +30,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hsmap {
@@ -49,6 +56,9 @@ struct CsvTable {
 // of column names in order). Throws InputError on any violation listed above.
 CsvTable readCsvTable(const std::filesystem::path& file,
                       const std::vector<std::vector<std::string>>& accepted_headers);
+// The same on the file's content `raw`; `file` names it in errors.
+CsvTable parseCsvTable(std::string_view raw, const std::filesystem::path& file,
+                       const std::vector<std::vector<std::string>>& accepted_headers);
 
 // Checks that time `t` of `row` (column `column`) is later than the previous
 // row's `previous_t`; throws InputError naming the row's line otherwise.
@@ -64,6 +74,7 @@ struct FrameRow {
   long long line_number = 0;  // 1-based line in frames.csv (0 when not read from a file)
 };
 std::vector<FrameRow> readFramesCsv(const std::filesystem::path& file);
+std::vector<FrameRow> parseFramesCsv(std::string_view raw, const std::filesystem::path& file);
 void writeFramesCsv(const std::filesystem::path& file, const std::vector<FrameRow>& frames);
 
 // ---- uhi/lines.csv --------------------------------------------------------
@@ -71,6 +82,7 @@ void writeFramesCsv(const std::filesystem::path& file, const std::vector<FrameRo
 // Recorded time of every scan line; element i is line i. The 'line' column
 // must count 0, 1, 2, ... in order, so the row of scan line i is data row i.
 std::vector<double> readLinesCsv(const std::filesystem::path& file);
+std::vector<double> parseLinesCsv(std::string_view raw, const std::filesystem::path& file);
 void writeLinesCsv(const std::filesystem::path& file, const std::vector<double>& line_times);
 
 // ---- nav/ins.csv ----------------------------------------------------------
@@ -87,12 +99,14 @@ struct InsFix {
   double roll_deg = 0.0;  // the three attitude angles are 0 when the file has none
   double pitch_deg = 0.0;
   double heading_deg = 0.0;
+  long long line_number = 0;  // 1-based line in ins.csv (0 when not read from a file)
 };
 struct InsTable {
   bool has_attitude = false;
   std::vector<InsFix> fixes;
 };
 InsTable readInsCsv(const std::filesystem::path& file);
+InsTable parseInsCsv(std::string_view raw, const std::filesystem::path& file);
 // Writes the attitude columns iff `table.has_attitude`.
 void writeInsCsv(const std::filesystem::path& file, const InsTable& table);
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <system_error>
 
+#include "core/util/message_text.h"
+
 namespace hsmap {
 
 std::string_view trimBlanks(std::string_view text) {
@@ -29,11 +31,11 @@ std::optional<double> parseFiniteDouble(std::string_view text, std::string* mess
   const char* end = body.data() + body.size();
   const auto [ptr, ec] = std::from_chars(body.data(), end, value);
   if (body.empty() || ec != std::errc() || ptr != end) {
-    if (message) *message = "expected a number, got '" + std::string(text) + "'";
+    if (message) *message = "expected a number, got " + quoteForMessage(text);
     return std::nullopt;
   }
   if (!std::isfinite(value)) {
-    if (message) *message = "expected a finite number, got '" + std::string(text) + "'";
+    if (message) *message = "expected a finite number, got " + quoteForMessage(text);
     return std::nullopt;
   }
   return value;
@@ -45,7 +47,7 @@ std::optional<long long> parseInteger(std::string_view text, std::string* messag
   const char* end = body.data() + body.size();
   const auto [ptr, ec] = std::from_chars(body.data(), end, value);
   if (body.empty() || ec != std::errc() || ptr != end) {
-    if (message) *message = "expected an integer, got '" + std::string(text) + "'";
+    if (message) *message = "expected an integer, got " + quoteForMessage(text);
     return std::nullopt;
   }
   return value;

@@ -6,9 +6,22 @@
 #include <stdexcept>
 
 #include "core/survey/number_text.h"
+#include "core/io/image_header.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
+#include "core/util/regular_file.h"
+#include "core/util/stderr_capture.h"
 
 namespace hsmap {
+namespace {
+
+// ": <what the library said>", escaped and shortened, or nothing.
+std::string libraryDetail(const StderrCapture& capture) {
+  const std::string line = capture.firstLine();
+  return line.empty() ? std::string() : ": " + escapeForMessage(line, 120);
+}
+
+}  // namespace
 
 RgbFrameSource::RgbFrameSource() = default;
 RgbFrameSource::RgbFrameSource(RgbFrameSource&&) noexcept = default;
@@ -22,16 +35,25 @@ RgbFrameSource RgbFrameSource::fromFrameList(const std::filesystem::path& frames
   const std::filesystem::path folder = frames_csv.parent_path();
   source.times_.reserve(source.rows_.size());
   source.image_paths_.reserve(source.rows_.size());
+  source.sizes_.reserve(source.rows_.size());
   for (const auto& row : source.rows_) {
     const std::filesystem::path image = folder / row.file;
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(image, error)) {
+    const auto fail = [&](const std::string& detail) {
       throw InputError(frames_csv, InputError::atLine(row.line_number),
-                       "column 'file': image '" + row.file + "' not found (expected the file " +
-                           image.string() + ")");
+                       "column 'file': image " + quoteForMessage(row.file) + " " + detail);
+    };
+    if (const auto why = whyNotRegularFile(image)) {
+      if (*why == "not found") fail("not found (expected the file " + image.string() + ")");
+      fail("is " + *why + "; expected a PNG or JPEG image file (" + image.string() + ")");
     }
+    // Every frame's header, not just the first: a damaged or foreign file
+    // among 1,200 frames must stop validation, not a stage hours later.
+    std::string why;
+    const auto header = readImageHeader(image, &why);
+    if (!header) fail("is " + why + " (" + image.string() + ")");
     source.times_.push_back(row.t);
     source.image_paths_.push_back(image);
+    source.sizes_.emplace_back(header->width, header->height);
   }
   return source;
 }
@@ -48,11 +70,22 @@ RgbFrameSource RgbFrameSource::fromVideo(const std::filesystem::path& video, dou
   RgbFrameSource source;
   source.is_video_ = true;
   source.source_path_ = video;
-  source.video_ = std::make_unique<cv::VideoCapture>(video.string());
-  if (!source.video_->isOpened()) {
-    throw InputError(video, "", "OpenCV cannot open the video (unsupported container or codec?)");
+  double count = 0.0;
+  {
+    // FFmpeg only: the GStreamer backend prints its own warnings and, on a
+    // file it cannot play, may wait on its pipeline. The capture keeps
+    // FFmpeg's messages for hsmap's error line.
+    const StderrCapture library_output;
+    source.video_ = std::make_unique<cv::VideoCapture>(video.string(), cv::CAP_FFMPEG);
+    if (!source.video_->isOpened()) {
+      throw InputError(video, "",
+                       "cannot open the video (unsupported container or codec?)" +
+                           libraryDetail(library_output));
+    }
+    count = source.video_->get(cv::CAP_PROP_FRAME_COUNT);
+    source.video_size_ = {static_cast<int>(source.video_->get(cv::CAP_PROP_FRAME_WIDTH)),
+                          static_cast<int>(source.video_->get(cv::CAP_PROP_FRAME_HEIGHT))};
   }
-  const double count = source.video_->get(cv::CAP_PROP_FRAME_COUNT);
   if (!(count >= 1.0)) {
     throw InputError(video, "",
                      "the video reports no frames (frame count " + formatDouble(count) + ")");
@@ -78,33 +111,51 @@ cv::Mat RgbFrameSource::frame(int i) const {
   cv::Mat image;
   if (!is_video_) {
     const auto index = static_cast<std::size_t>(i);
+    const StderrCapture library_output;
     image = cv::imread(image_paths_[index].string(), cv::IMREAD_COLOR);
     if (image.empty()) {
       throw InputError(image_paths_[index], "",
                        "cannot decode the image (listed at " + source_path_.string() + ":" +
-                           InputError::atLine(rows_[index].line_number) + ")");
+                           InputError::atLine(rows_[index].line_number) + ")" +
+                           libraryDetail(library_output));
     }
     return image;
   }
   // Seeking is slow and not frame-exact in every container, so sequential
   // reads continue from the decoder's position.
+  const StderrCapture library_output;
   if (i != next_video_frame_) video_->set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(i));
   if (!video_->read(image) || image.empty()) {
     next_video_frame_ = -1;  // position unknown: seek next time
     throw InputError(source_path_, "frame " + std::to_string(i),
                      "cannot decode the frame (the video has " + std::to_string(frameCount()) +
-                         " frames by its header)");
+                         " frames by its header)" + libraryDetail(library_output));
   }
   next_video_frame_ = i + 1;
   return image;
 }
 
 cv::Size RgbFrameSource::frameSize() const {
-  if (is_video_) {
-    return {static_cast<int>(video_->get(cv::CAP_PROP_FRAME_WIDTH)),
-            static_cast<int>(video_->get(cv::CAP_PROP_FRAME_HEIGHT))};
+  if (is_video_) return video_size_;
+  return sizes_.empty() ? cv::Size() : sizes_.front();
+}
+
+std::optional<int> RgbFrameSource::findFrameOfOtherSize(cv::Size size) const {
+  if (is_video_) return video_size_ == size ? std::nullopt : std::optional<int>(0);
+  for (std::size_t i = 0; i < sizes_.size(); ++i) {
+    if (sizes_[i] != size) return static_cast<int>(i);
   }
-  return frame(0).size();
+  return std::nullopt;
+}
+
+cv::Size RgbFrameSource::frameSize(int i) const {
+  if (is_video_) return video_size_;
+  return sizes_.at(static_cast<std::size_t>(i));
+}
+
+long long RgbFrameSource::frameLine(int i) const {
+  if (is_video_) return 0;
+  return rows_.at(static_cast<std::size_t>(i)).line_number;
 }
 
 }  // namespace hsmap

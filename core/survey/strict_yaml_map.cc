@@ -1,5 +1,6 @@
 #include "core/survey/strict_yaml_map.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -9,6 +10,7 @@
 
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
 #include "core/util/text_file.h"
 
 namespace hsmap {
@@ -31,12 +33,45 @@ long long lineOfNode(const YAML::Node& node, long long fallback) {
   return mark.is_null() ? fallback : mark.line + 1;
 }
 
+// Where a second YAML document starts in normalised `text`, or 0 when the
+// text holds one document. A line that starts with "---" or "..." followed
+// by a blank or its end is a document marker wherever it stands (YAML 1.2
+// forbids such lines inside scalars), so markers are found on the text:
+// yaml-cpp 0.7's LoadAll() cannot be used to count documents, since on some
+// inputs (a lone ',') it produces empty documents without end.
+long long secondDocumentLine(std::string_view text) {
+  const auto isMarker = [](std::string_view line, std::string_view marker) {
+    return line.substr(0, 3) == marker &&
+           (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+  };
+  bool content = false;  // the first document has begun
+  bool ended = false;    // its '...' end marker was seen
+  long long line_number = 0;
+  for (std::size_t start = 0; start <= text.size(); ++line_number) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    const std::size_t first = line.find_first_not_of(" \t");
+    const bool blank = first == std::string_view::npos || line[first] == '#';
+    if (isMarker(line, "---")) {
+      if (content || ended) return line_number + 1;
+      content = true;  // "--- value" opens the document on this line
+    } else if (isMarker(line, "...")) {
+      ended = ended || content;
+    } else if (!blank && line[0] != '%') {  // '%' starts a directive, before '---'
+      if (ended) return line_number + 1;
+      content = true;
+    }
+    if (end == text.size()) break;
+  }
+  return 0;
+}
 }  // namespace
 
 std::string describeYamlNode(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar:
-      return "'" + node.Scalar() + "'";
+      return quoteForMessage(node.Scalar());
     case YAML::NodeType::Sequence:
       return "a list";
     case YAML::NodeType::Map:
@@ -46,14 +81,26 @@ std::string describeYamlNode(const YAML::Node& node) {
   }
 }
 
-YAML::Node loadYamlFile(const std::filesystem::path& file) {
-  const std::string text = readTextFile(file);
+YAML::Node parseYamlText(std::string_view raw, const std::filesystem::path& file) {
+  const std::string text = normaliseText(raw, file, TextEncoding::utf8);
+  if (const long long line = secondDocumentLine(text)) {
+    // yaml-cpp's Load() would read the first document and drop the rest: a
+    // file pasted twice, or notes after a '...' end marker, would be half
+    // read without a word. Every hsmap YAML file is one document.
+    throw InputError(file, InputError::atLine(line),
+                     "a second YAML document starts here; expected the file to hold one "
+                     "document (remove what follows the first '---' / '...' document marker)");
+  }
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {  // ParserException and the rest carry a mark
     throw InputError(file, InputError::atLine(e.mark.is_null() ? 1 : e.mark.line + 1),
-                     "YAML syntax error: " + e.msg);
+                     "YAML syntax error: " + escapeForMessage(e.msg, 200));
   }
+}
+
+YAML::Node loadYamlFile(const std::filesystem::path& file) {
+  return parseYamlText(readTextFile(file, kMaxYamlBytes), file);
 }
 
 StrictYamlMap::StrictYamlMap(std::filesystem::path file, const YAML::Node& node,
@@ -76,7 +123,7 @@ StrictYamlMap::StrictYamlMap(std::filesystem::path file, const YAML::Node& node,
     bool allowed = false;
     for (const auto& candidate : allowed_keys) allowed = allowed || candidate == key;
     if (!allowed) {
-      throw InputError(file_, whereText(key_line, keyPath(key)),
+      throw InputError(file_, whereText(key_line, keyPath(escapeForMessage(key, 40))),
                        "unknown key; expected one of: " + joinKeys(allowed_keys));
     }
     if (const Entry* first = find(key)) {
@@ -162,7 +209,22 @@ std::string StrictYamlMap::text(const std::string& key) const {
   if (!entry.value.IsScalar() || entry.value.Scalar().empty()) {
     fail(key, "expected a non-empty text value, got " + describeYamlNode(entry.value));
   }
-  return entry.value.Scalar();
+  const std::string& value = entry.value.Scalar();
+  // The file's bytes were checked by parseYamlText(), but a double-quoted
+  // scalar can still spell control characters as escapes ("\0", "\x01"):
+  // a NUL would silently cut a file name handed to the operating system.
+  for (const char c : value) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7F) {
+      fail(key, "expected printable text, got " + quoteForMessage(value) +
+                    " (it holds a control character)");
+    }
+  }
+  if (value.size() > kMaxTextValueBytes) {
+    fail(key, "expected a text of at most " + std::to_string(kMaxTextValueBytes) +
+                  " bytes, got " + quoteForMessage(value));
+  }
+  return value;
 }
 
 std::vector<double> StrictYamlMap::numbers(const std::string& key, std::size_t count) const {
@@ -185,6 +247,42 @@ StrictYamlMap StrictYamlMap::map(const std::string& key,
                                  std::vector<std::string> allowed_keys) const {
   const Entry& entry = require(key);
   return StrictYamlMap(file_, entry.value, keyPath(key), entry.line, std::move(allowed_keys));
+}
+
+double StrictYamlMap::numberInRange(const std::string& key, double low, double high) const {
+  const double value = number(key);
+  if (value < low || value > high) {
+    fail(key, "expected a number in [" + formatDouble(low) + ", " + formatDouble(high) +
+                  "], got " + formatDouble(value));
+  }
+  return value;
+}
+
+double StrictYamlMap::positiveNumberUpTo(const std::string& key, double high) const {
+  const double value = positiveNumber(key);
+  if (value > high) {
+    fail(key, "expected a number in (0, " + formatDouble(high) + "], got " + formatDouble(value));
+  }
+  return value;
+}
+
+int StrictYamlMap::positiveIntegerUpTo(const std::string& key, int high) const {
+  const int value = positiveInteger(key);
+  if (value > high) {
+    fail(key, "expected an integer in [1, " + std::to_string(high) + "], got " +
+                  std::to_string(value));
+  }
+  return value;
+}
+
+double StrictYamlMap::numberInRange(const std::string& key, double low, double high,
+                                    double default_value) const {
+  return has(key) ? numberInRange(key, low, high) : default_value;
+}
+
+double StrictYamlMap::positiveNumberUpTo(const std::string& key, double high,
+                                         double default_value) const {
+  return has(key) ? positiveNumberUpTo(key, high) : default_value;
 }
 
 double StrictYamlMap::number(const std::string& key, double default_value) const {

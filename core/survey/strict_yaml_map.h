@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace hsmap {
@@ -47,12 +48,26 @@ class StrictYamlMap {
   double number(const std::string& key) const;
   double positiveNumber(const std::string& key) const;  // > 0
   int positiveInteger(const std::string& key) const;    // integer > 0
-  std::string text(const std::string& key) const;       // a non-empty scalar
+  // A non-empty scalar of printable characters (no control characters, even
+  // as YAML escapes), at most kMaxTextValueBytes long.
+  std::string text(const std::string& key) const;
+  static constexpr std::size_t kMaxTextValueBytes = 4096;
   // A list of exactly `count` numbers.
   std::vector<double> numbers(const std::string& key, std::size_t count) const;
   StrictYamlMap map(const std::string& key, std::vector<std::string> allowed_keys) const;
 
+  // A number in [low, high] ("expected a number in [low, high], got v"), and
+  // a number in (0, high] ("expected a number > 0" / "... in (0, high]"):
+  // finite is not enough for physical quantities (a focal length of 1e308).
+  double numberInRange(const std::string& key, double low, double high) const;
+  double positiveNumberUpTo(const std::string& key, double high) const;
+  // An integer in [1, high].
+  int positiveIntegerUpTo(const std::string& key, int high) const;
+
   // Optional values: `default_value` when the key is absent.
+  double numberInRange(const std::string& key, double low, double high,
+                       double default_value) const;
+  double positiveNumberUpTo(const std::string& key, double high, double default_value) const;
   double number(const std::string& key, double default_value) const;
   double positiveNumber(const std::string& key, double default_value) const;
   std::vector<double> numbers(const std::string& key, std::size_t count,
@@ -79,9 +94,15 @@ class StrictYamlMap {
 // messages: "'abc'" for a scalar, "a list", "a map", "nothing".
 std::string describeYamlNode(const YAML::Node& node);
 
-// Reads and parses the YAML document in `file`. A file that cannot be opened
-// or a syntax error becomes InputError (a syntax error at its line). An empty
-// document yields a Null node.
+// Parses the one YAML document of `raw`, the content of `file` (named in
+// errors): the text checks of text_file.h (UTF-8, no control characters; CR
+// and CRLF line ends accepted), then yaml-cpp. A syntax error is an
+// InputError at its line, and so is a second document (content after a
+// '...' or '---' marker): every hsmap YAML file holds exactly one. Empty
+// text yields a Null node.
+YAML::Node parseYamlText(std::string_view raw, const std::filesystem::path& file);
+
+// parseYamlText() of `file`, read with the limit kMaxYamlBytes (text_file.h).
 YAML::Node loadYamlFile(const std::filesystem::path& file);
 
 }  // namespace hsmap

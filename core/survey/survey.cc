@@ -6,8 +6,11 @@
 #include <cstdio>
 
 #include "core/io/envi_header.h"
+#include "core/survey/ins_jump_check.h"
 #include "core/survey/number_text.h"
+#include "core/util/regular_file.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
@@ -39,15 +42,18 @@ RgbFrameSource openRgb(const Survey& survey) {
                               ? RgbFrameSource::fromVideo(survey.folder / rgb.video->video,
                                                           rgb.video->start_time, rgb.video->fps)
                               : RgbFrameSource::fromFrameList(survey.folder / rgb.frames);
-  const cv::Size size = source.frameSize();
-  if (size.width != rgb.camera.width || size.height != rgb.camera.height) {
-    const std::filesystem::path shown =
-        source.isVideo() ? source.sourcePath() : source.framePath(0);
-    throw InputError(
-        shown, "",
-        "frames are " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-            " pixels but " + survey.config_path.string() + " gives rgb.camera width " +
-            std::to_string(rgb.camera.width) + ", height " + std::to_string(rgb.camera.height));
+  const cv::Size expected(rgb.camera.width, rgb.camera.height);
+  if (const auto other = source.findFrameOfOtherSize(expected)) {
+    const cv::Size size = source.frameSize(*other);
+    const std::string detail = std::to_string(size.width) + "x" + std::to_string(size.height) +
+                               " pixels but " + survey.config_path.string() +
+                               " gives rgb.camera width " + std::to_string(rgb.camera.width) +
+                               ", height " + std::to_string(rgb.camera.height);
+    if (source.isVideo()) throw InputError(source.sourcePath(), "", "frames are " + detail);
+    throw InputError(source.sourcePath(), InputError::atLine(source.frameLine(*other)),
+                     "column 'file': image " +
+                         quoteForMessage(source.framePath(*other).filename().string()) + " is " +
+                         detail);
   }
   return source;
 }
@@ -73,7 +79,7 @@ std::vector<double> wavelengthsInNm(const EnviHeader& header, const std::filesys
   } else {
     throw InputError(
         hdr, InputError::atKey("wavelength units"),
-        "unsupported units '" + header.wavelength_units + "'; expected Nanometers or Micrometers");
+        "unsupported units " + quoteForMessage(header.wavelength_units) + "; expected Nanometers or Micrometers");
   }
   std::vector<double> nm;
   nm.reserve(header.wavelength.size());
@@ -134,6 +140,36 @@ void checkCoverage(Survey& survey, const std::string& stream, const std::filesys
   }
 }
 
+// A file named by survey.yaml that is missing or is not a regular file (a
+// FIFO, /dev/null) is reported at the key that named it: the user's mistake
+// is in survey.yaml, and the file's own name may not tell which key it was.
+void checkReferencedFile(const Survey& survey, const std::string& key,
+                         const std::filesystem::path& file, const std::string& expected) {
+  const auto why = whyNotRegularFile(file);
+  if (!why) return;
+  const auto line = survey.config.file_key_lines.find(key);
+  std::string where = InputError::atKey(key);
+  if (line != survey.config.file_key_lines.end()) where = InputError::atLine(line->second) + ", " + where;
+  const std::string found = *why == "not found" ? "not found" : "is " + *why;
+  throw InputError(survey.config_path, where,
+                   "the file " + quoteForMessage(file.string(), 120) + " " + found +
+                       "; expected " + expected);
+}
+
+void checkReferencedFiles(const Survey& survey) {
+  const SurveyConfig& config = survey.config;
+  if (config.rgb.video) {
+    checkReferencedFile(survey, "rgb.video", survey.folder / config.rgb.video->video,
+                        "a video file");
+  } else {
+    checkReferencedFile(survey, "rgb.frames", survey.folder / config.rgb.frames,
+                        "the frame table (file,t)");
+  }
+  checkReferencedFile(survey, "uhi.cube", survey.cube_header_path, "an ENVI header (.hdr)");
+  checkReferencedFile(survey, "uhi.lines", survey.lines_path, "the scan-line table (line,t)");
+  checkReferencedFile(survey, "ins.file", survey.ins_path, "the INS table (t,lat,lon,depth...)");
+}
+
 TruthFolder detectTruth(const std::filesystem::path& folder) {
   TruthFolder truth;
   truth.folder = folder / "truth";
@@ -170,6 +206,7 @@ Survey loadSurvey(const std::filesystem::path& folder) {
   survey.cube_header_path = folder / config.uhi.cube;
   survey.lines_path = folder / config.uhi.lines;
   survey.ins_path = folder / config.ins.file;
+  checkReferencedFiles(survey);
 
   survey.rgb = openRgb(survey);
 
@@ -188,6 +225,10 @@ Survey loadSurvey(const std::filesystem::path& folder) {
   checkLineCount(survey);
 
   survey.ins = readInsCsv(survey.ins_path);
+  for (auto& warning : checkInsJumps(survey.ins, survey.ins_path, config.ins.sigma_horizontal_m,
+                                     config.ins.sigma_depth_m)) {
+    survey.warnings.push_back(std::move(warning));
+  }
 
   checkCoverage(survey, "RGB", survey.rgb.sourcePath(), survey.rgb.times().front(),
                 survey.rgb.times().back());

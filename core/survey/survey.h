@@ -6,10 +6,13 @@
 // loadSurvey(folder) resolves every path of survey.yaml relative to `folder`
 // and checks, in this order (the first violation throws InputError naming
 // the file and the line or key):
-//   1. survey.yaml (survey_config.h: strict keys, types, ranges);
-//   2. the RGB frames: frames.csv rows and that every listed image exists, or
-//      that the video opens; the first frame's size equals rgb.camera's
-//      width x height (only the first image is decoded, to keep loading fast);
+//   1. survey.yaml (survey_config.h: strict keys, types, ranges), and that
+//      every file it names exists and is a regular file (else the error names
+//      survey.yaml's line and key, e.g. "key rgb.frames: the file '/dev/null'
+//      is a character device; expected the frame table (file,t)");
+//   2. the RGB frames: frames.csv rows and that every listed image is a PNG
+//      or JPEG whose header (read, not decoded) gives rgb.camera's width x
+//      height, or that the video opens at that size;
 //   3. the UHI cube: the ENVI header and the data file's size (EnviReader);
 //      its `samples` equals uhi.camera.samples; it has one wavelength per band
 //      (an error when absent: every hyperspectral product is labelled by
@@ -17,7 +20,9 @@
 //      wavelengths are converted to nanometres (units "Nanometers", "nm" or
 //      absent = nm; "Micrometers", "um" = x1000; anything else is an error);
 //   4. uhi/lines.csv: one row per scan line of the cube, time-ordered;
-//   5. nav/ins.csv: time-ordered, finite fixes (at least one);
+//   5. nav/ins.csv: time-ordered fixes in physical ranges (at least one), no
+//      impossible jump between consecutive fixes; suspicious jumps are
+//      warnings naming their line (ins_jump_check.h);
 //   6. time spans: the RGB span and the UHI span (recorded times + the
 //      survey's time_offset_s guess) must overlap the INS span — disjoint
 //      spans are an error (nothing could be geo-referenced); partial coverage

@@ -7,20 +7,29 @@
 #include "core/survey/number_text.h"
 #include "core/survey/strict_yaml_map.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
 
-double numberInRange(const StrictYamlMap& map, const std::string& key, double low, double high) {
-  const double value = map.number(key);
-  if (value < low || value > high) {
-    map.fail(key, "expected a number in [" + formatDouble(low) + ", " + formatDouble(high) +
-                      "], got " + formatDouble(value));
-  }
-  return value;
+// Physical bounds of the survey's numbers (survey_config.h): finite is not
+// enough (a time of 1e300 or a depth of 1e308 passes a finiteness check).
+constexpr double kMaxAbsTimeS = 4e9;            // as in the CSV tables
+constexpr double kMaxFrameRateHz = 10000.0;
+constexpr double kMaxAbsTimeOffsetS = 3600.0;   // UHI clock vs the shared clock
+constexpr double kMaxTimeSigmaS = 3600.0;
+constexpr double kMaxRotationSigmaDeg = 180.0;
+constexpr double kMaxTranslationSigmaM = 100.0;
+constexpr double kMaxPositionSigmaM = 10000.0;
+constexpr double kMinDepthM = -10000.0, kMaxDepthM = 12000.0;
+
+// Remembers the line of a key that names a file, so that loadSurvey can
+// report a missing or non-regular file at the survey.yaml key that named it.
+void rememberFileKey(SurveyConfig& config, const StrictYamlMap& map, const std::string& key) {
+  if (map.has(key)) config.file_key_lines[map.keyPath(key)] = map.lineOf(key);
 }
 
-RgbConfig parseRgb(const StrictYamlMap& root) {
+RgbConfig parseRgb(const StrictYamlMap& root, SurveyConfig& survey) {
   const StrictYamlMap rgb = root.map("rgb", {"frames", "video", "start_time", "fps", "camera"});
   RgbConfig config;
   if (rgb.has("frames") && rgb.has("video")) {
@@ -29,8 +38,9 @@ RgbConfig parseRgb(const StrictYamlMap& root) {
   if (rgb.has("video")) {
     RgbVideoConfig video;
     video.video = rgb.text("video");
-    video.start_time = rgb.number("start_time");
-    video.fps = rgb.positiveNumber("fps");
+    video.start_time = rgb.numberInRange("start_time", -kMaxAbsTimeS, kMaxAbsTimeS);
+    video.fps = rgb.positiveNumberUpTo("fps", kMaxFrameRateHz);
+    rememberFileKey(survey, rgb, "video");
     config.video = video;
   } else {
     if (!rgb.has("frames")) {
@@ -40,45 +50,52 @@ RgbConfig parseRgb(const StrictYamlMap& root) {
       if (rgb.has(key)) rgb.fail(key, "only allowed together with 'video'");
     }
     config.frames = rgb.text("frames");
+    rememberFileKey(survey, rgb, "frames");
   }
   config.camera = readPinholeRadtanCamera(rgb, "camera");
   return config;
 }
 
-UhiConfig parseUhi(const StrictYamlMap& root) {
+UhiConfig parseUhi(const StrictYamlMap& root, SurveyConfig& survey) {
   const StrictYamlMap uhi = root.map(
       "uhi", {"cube", "lines", "camera", "extrinsic", "time_offset_s", "time_offset_sigma_s"});
   UhiConfig config;
   config.cube = uhi.text("cube");
   config.lines = uhi.text("lines");
+  rememberFileKey(survey, uhi, "cube");
+  rememberFileKey(survey, uhi, "lines");
   config.camera = readPushbroomCamera(uhi, "camera");
   const StrictYamlMap extrinsic = uhi.map(
       "extrinsic", {"rotation_wxyz", "translation_m", "sigma_rotation_deg", "sigma_translation_m"});
   config.T_C_U = readRigidTransform(extrinsic);
-  config.sigma_rotation_deg =
-      extrinsic.positiveNumber("sigma_rotation_deg", config.sigma_rotation_deg);
-  config.sigma_translation_m =
-      extrinsic.positiveNumber("sigma_translation_m", config.sigma_translation_m);
-  config.time_offset_s = uhi.number("time_offset_s", config.time_offset_s);
+  config.sigma_rotation_deg = extrinsic.positiveNumberUpTo(
+      "sigma_rotation_deg", kMaxRotationSigmaDeg, config.sigma_rotation_deg);
+  config.sigma_translation_m = extrinsic.positiveNumberUpTo(
+      "sigma_translation_m", kMaxTranslationSigmaM, config.sigma_translation_m);
+  config.time_offset_s = uhi.numberInRange("time_offset_s", -kMaxAbsTimeOffsetS,
+                                           kMaxAbsTimeOffsetS, config.time_offset_s);
   config.time_offset_sigma_s =
-      uhi.positiveNumber("time_offset_sigma_s", config.time_offset_sigma_s);
+      uhi.positiveNumberUpTo("time_offset_sigma_s", kMaxTimeSigmaS, config.time_offset_sigma_s);
   return config;
 }
 
-InsConfig parseIns(const StrictYamlMap& root) {
+InsConfig parseIns(const StrictYamlMap& root, SurveyConfig& survey) {
   const StrictYamlMap ins = root.map("ins", {"file", "camera_in_body", "sigma_horizontal_m",
                                              "sigma_depth_m", "sigma_attitude_deg"});
   InsConfig config;
   config.file = ins.text("file");
+  rememberFileKey(survey, ins, "file");
   config.T_B_C = readRigidTransform(ins.map("camera_in_body", {"rotation_wxyz", "translation_m"}));
-  config.sigma_horizontal_m = ins.positiveNumber("sigma_horizontal_m", config.sigma_horizontal_m);
-  config.sigma_depth_m = ins.positiveNumber("sigma_depth_m", config.sigma_depth_m);
+  config.sigma_horizontal_m =
+      ins.positiveNumberUpTo("sigma_horizontal_m", kMaxPositionSigmaM, config.sigma_horizontal_m);
+  config.sigma_depth_m =
+      ins.positiveNumberUpTo("sigma_depth_m", kMaxPositionSigmaM, config.sigma_depth_m);
   const std::vector<double> sigma_attitude = ins.numbers(
       "sigma_attitude_deg", 3,
       {config.sigma_attitude_deg[0], config.sigma_attitude_deg[1], config.sigma_attitude_deg[2]});
   for (std::size_t i = 0; i < 3; ++i) {
-    if (!(sigma_attitude[i] > 0.0)) {
-      ins.fail("sigma_attitude_deg", "expected three numbers > 0, got " +
+    if (!(sigma_attitude[i] > 0.0) || sigma_attitude[i] > kMaxRotationSigmaDeg) {
+      ins.fail("sigma_attitude_deg", "expected three numbers in (0, 180], got " +
                                          formatDouble(sigma_attitude[i]) + " at position " +
                                          std::to_string(i + 1));
     }
@@ -98,19 +115,19 @@ SurveyConfig parseSurveyConfig(const std::filesystem::path& path, const YAML::No
   const std::string format = root.text("format");
   if (format != SurveyConfig::kFormat) {
     root.fail("format",
-              "unsupported format '" + format + "'; expected '" + SurveyConfig::kFormat + "'");
+              "unsupported format " + quoteForMessage(format) + "; expected '" + SurveyConfig::kFormat + "'");
   }
   SurveyConfig config;
   config.name = root.text("name");
-  config.rgb = parseRgb(root);
-  config.uhi = parseUhi(root);
-  config.ins = parseIns(root);
+  config.rgb = parseRgb(root, config);
+  config.uhi = parseUhi(root, config);
+  config.ins = parseIns(root, config);
   if (root.has("origin")) {
     const StrictYamlMap origin = root.map("origin", {"lat", "lon", "depth"});
     GeodeticPoint value;
-    value.lat_deg = numberInRange(origin, "lat", -90.0, 90.0);
-    value.lon_deg = numberInRange(origin, "lon", -180.0, 180.0);
-    value.depth_m = origin.number("depth");
+    value.lat_deg = origin.numberInRange("lat", -90.0, 90.0);
+    value.lon_deg = origin.numberInRange("lon", -180.0, 180.0);
+    value.depth_m = origin.numberInRange("depth", kMinDepthM, kMaxDepthM);
     config.origin = value;
   }
   return config;
@@ -188,6 +205,10 @@ std::string emitSurveyConfig(const SurveyConfig& config) {
 
 SurveyConfig readSurveyConfig(const std::filesystem::path& path) {
   return parseSurveyConfig(path, loadYamlFile(path));
+}
+
+SurveyConfig parseSurveyConfigText(std::string_view raw, const std::filesystem::path& path) {
+  return parseSurveyConfig(path, parseYamlText(raw, path));
 }
 
 void writeSurveyConfig(const std::filesystem::path& path, const SurveyConfig& config) {

@@ -9,40 +9,41 @@
 //   rgb:
 //     frames: <path>                         exactly one of `frames` or `video`
 //     video: <path>                          a video file read with OpenCV;
-//     start_time: <s>                          with `video` only, then required (finite)
-//     fps: <Hz>                                with `video` only, then required (> 0)
+//     start_time: <s>                          with `video` only, then required, in [-4e9, 4e9]
+//     fps: <Hz>                                with `video` only, then required, in (0, 10000]
 //     camera:
 //       model: pinhole-radtan                required, the only RGB model
-//       width, height: <px>                  required integers > 0
-//       fx, fy: <px>                         required > 0
-//       cx, cy: <px>                         required, finite
-//       distortion: [k1, k2, p1, p2, k3]     optional, 5 numbers; default zeros
+//       width, height: <px>                  required integers in [1, 65536]
+//       fx, fy: <px>                         required, in (0, 1e6]
+//       cx, cy: <px>                         required, in [-1e6, 1e6]
+//       distortion: [k1, k2, p1, p2, k3]     optional, 5 numbers in [-1000, 1000]; default zeros
 //   uhi:
 //     cube: <path to the ENVI .hdr>          required
 //     lines: <path>                          required
 //     camera:
 //       model: pushbroom                     required, the only UHI model
-//       samples: <px>                        required integer > 0
-//       f: <px>                              required > 0
-//       cx: <px>                             required, finite
-//       distortion: [k1, k2]                 optional, 2 numbers; default zeros
+//       samples: <px>                        required integer in [1, 1000000]
+//       f: <px>                              required, in (0, 1e6]
+//       cx: <px>                             required, in [-1e6, 1e6]
+//       distortion: [k1, k2]                 optional, 2 numbers in [-1000, 1000]; default zeros
 //     extrinsic:                             required (T_C_U, the CAD guess)
 //       rotation_wxyz: [w, x, y, z]          required (see quaternions below)
-//       translation_m: [x, y, z]             required
-//       sigma_rotation_deg: <deg>            optional > 0; default 2.0
-//       sigma_translation_m: <m>             optional > 0; default 0.05
-//     time_offset_s: <s>                     optional, finite; default 0.0
-//     time_offset_sigma_s: <s>               optional > 0; default 0.05
+//       translation_m: [x, y, z]             required, each in [-100, 100]
+//       sigma_rotation_deg: <deg>            optional, in (0, 180]; default 2.0
+//       sigma_translation_m: <m>             optional, in (0, 100]; default 0.05
+//     time_offset_s: <s>                     optional, in [-3600, 3600]; default 0.0
+//     time_offset_sigma_s: <s>               optional, in (0, 3600]; default 0.05
 //   ins:
 //     file: <path>                           required
 //     camera_in_body:                        required (T_B_C)
 //       rotation_wxyz: [w, x, y, z]          required
-//       translation_m: [x, y, z]             required
-//     sigma_horizontal_m: <m>                optional > 0; default 0.5
-//     sigma_depth_m: <m>                     optional > 0; default 0.05
-//     sigma_attitude_deg: [roll, pitch, heading]  optional, each > 0; default [0.05, 0.05, 0.2]
+//       translation_m: [x, y, z]             required, each in [-100, 100]
+//     sigma_horizontal_m: <m>                optional, in (0, 10000]; default 0.5
+//     sigma_depth_m: <m>                     optional, in (0, 10000]; default 0.05
+//     sigma_attitude_deg: [roll, pitch, heading]  optional, each in (0, 180]; default [0.05, 0.05, 0.2]
 //   origin: {lat, lon, depth}                optional; all three required when given;
-//                                            lat in [-90, 90], lon in [-180, 180], depth finite.
+//                                            lat in [-90, 90], lon in [-180, 180],
+//                                            depth in [-10000, 12000] (m, h = -depth).
 //                                            Absent: W's origin is the first INS fix.
 //
 // The sigma defaults are those of a typical survey-grade INS and of a
@@ -63,8 +64,10 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/geometry/camera_parameters.h"
 #include "core/geometry/geodetic_point.h"
@@ -116,11 +119,19 @@ struct SurveyConfig {
   InsConfig ins;
   // The geodetic point at which W (local NED) is tangent; absent: the first INS fix.
   std::optional<GeodeticPoint> origin;
+
+  // The 1-based survey.yaml line of each key that names a file ("rgb.frames",
+  // "rgb.video", "uhi.cube", "uhi.lines", "ins.file"), so that a missing or
+  // non-regular file is reported at the key that named it. Empty when the
+  // configuration was not read from a file.
+  std::map<std::string, long long> file_key_lines;
 };
 
 // Reads and validates `path` (see the table above). Throws InputError naming
 // `path`, the line and the dotted key.
 SurveyConfig readSurveyConfig(const std::filesystem::path& path);
+// The same on the file's content `raw`; `path` names it in errors.
+SurveyConfig parseSurveyConfigText(std::string_view raw, const std::filesystem::path& path);
 
 // Writes `config` to `path` atomically (a .partial file renamed when complete).
 // Numbers are written in shortest round-trip form; optional keys are always

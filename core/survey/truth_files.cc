@@ -11,6 +11,7 @@
 #include "core/survey/number_text.h"
 #include "core/survey/strict_yaml_map.h"
 #include "core/util/input_error.h"
+#include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
@@ -124,7 +125,7 @@ TruthCalibration parseTruthCalibration(const std::filesystem::path& file,
                             "uhi_camera", "water_attenuation_per_m"});
   const std::string format = root.text("format");
   if (format != TruthCalibration::kFormat) {
-    root.fail("format", "unsupported format '" + format + "'; expected '" +
+    root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
                             TruthCalibration::kFormat + "'");
   }
   TruthCalibration calibration;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -77,6 +78,12 @@ inline std::string readText(const std::filesystem::path& file) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// Number of '\n'-terminated lines of a text file.
+inline long long countLines(const std::filesystem::path& file) {
+  const std::string text = readText(file);
+  return static_cast<long long>(std::count(text.begin(), text.end(), '\n'));
 }
 
 // Replaces the one occurrence of `from` in `file` by `to`; throws when `from`

@@ -4,16 +4,22 @@
 // failure exits with status 1.
 
 #include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
 #include <exception>
 #include <iostream>
 #include <string>
 
 #include "core/util/input_error.h"
 #include "tools/hsmap/inspect_command.h"
+#include "tools/hsmap/run_command.h"
 #include "tools/hsmap/sample_command.h"
 #include "tools/hsmap/simulate_command.h"
 
 int main(int argc, char** argv) {
+  // hsmap reports problems itself, in one line each; OpenCV's own log lines
+  // (e.g. "imread_(...): can't open/read file") would only precede them.
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+
   CLI::App app(
       "hsmap: geo-referenced hyperspectral 3D maps from underwater surveys (RGB video, push-broom "
       "hyperspectral camera, INS).",
@@ -26,6 +32,8 @@ int main(int argc, char** argv) {
   CLI::App* inspect = hsmap::addInspectCommand(app, inspect_options);
   hsmap::SampleOptions sample_options;
   CLI::App* sample = hsmap::addSampleCommand(app, sample_options);
+  hsmap::RunOptions run_options;
+  CLI::App* run = hsmap::addRunCommand(app, run_options);
   hsmap::SimulateOptions simulate_options;
   CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);
 
@@ -38,6 +46,7 @@ int main(int argc, char** argv) {
 
   try {
     if (inspect->parsed()) return hsmap::runInspectCommand(inspect_options, std::cout);
+    if (run->parsed()) return hsmap::runRunCommand(run_options, std::cout, std::cerr);
     if (sample->parsed()) return hsmap::runSampleCommand(sample_options, std::cout, std::cerr);
     if (simulate->parsed()) {
       return hsmap::runSimulateCommand(simulate_options, std::cout, std::cerr);

@@ -188,7 +188,28 @@ INSTANTIATE_TEST_SUITE_P(
         BadHeaderCase{"FwhmCount", valid("fwhm = {5}\n"),
                       "line 7: key 'fwhm': expected 2 values (one per band), found 1"},
         BadHeaderCase{"WavelengthNotANumber", valid("wavelength = {400, 5OO}\n"),
-                      "line 7: key 'wavelength': expected a number as item 2, found '5OO'"},
+                      "line 7: key 'wavelength': expected a finite number as item 2, found '5OO'"},
+        BadHeaderCase{"FwhmNan", valid("fwhm = {nan, 5}\n"),
+                      "line 7: key 'fwhm': expected a finite number as item 1, found 'nan'"},
+        BadHeaderCase{"FwhmMinusInf", valid("fwhm = {5, -inf}\n"),
+                      "line 7: key 'fwhm': expected a finite number as item 2, found '-inf'"},
+        BadHeaderCase{"FwhmNotPositive", valid("fwhm = {5, 0}\n"),
+                      "line 7: key 'fwhm': expected band widths > 0, found 0 for band 2"},
+        BadHeaderCase{"HeaderOffsetWrapsAround", valid("header offset = 18446744073709551600\n"),
+                      "line 7: key 'header offset': 18446744073709551600 bytes before 48 bytes of "
+                      "data is beyond the largest possible file (2^63 bytes); expected the number "
+                      "of bytes that precede the data in the data file"},
+        BadHeaderCase{"SizeProductOverflows",
+                      "ENVI\nsamples = 2147483647\nlines = 2147483647\nbands = 2147483647\n"
+                      "data type = 5\ninterleave = bil\n",
+                      "line 4: key 'bands': samples 2147483647 x lines 2147483647 x bands "
+                      "2147483647 x 8 bytes per value is larger than any file can be (2^63 bytes); "
+                      "expected the sizes of a real raster"},
+        BadHeaderCase{"BinaryValueEscaped", valid("interleave2 = x\n") + "data type = \xFF\xFE\n",
+                      "line 8: key 'data type' appears twice (first on line 5)"},
+        BadHeaderCase{"NulByte", valid(std::string("description = {a\0b}\n", 20)),
+                      "line 7: control character 0x00 (NUL) in column 17; expected text (is this a "
+                      "binary or damaged file?)"},
         BadHeaderCase{"WavelengthNotAList", valid("wavelength = 400\n"),
                       "line 7: key 'wavelength': expected a list in braces '{ ... }', found '400'"},
         BadHeaderCase{"UnclosedBrace", valid("description = {never\nclosed\n"),
@@ -204,7 +225,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "easting, northing, pixel size x, pixel size y[, zone, North|South][, datum][, units=...]}, "
                       "found 6 items"},
         BadHeaderCase{"MapInfoBadNumber", valid("map info = {UTM, 1, 1, east, 4000000, 0.5, 0.5, 31, North}\n"),
-                      "line 7: key 'map info': expected a number for easting (item 4), found 'east'"},
+                      "line 7: key 'map info': expected a finite number for easting (item 4), found 'east'"},
         BadHeaderCase{"MapInfoUtmWithoutZone", valid("map info = {UTM, 1, 1, 5, 4, 0.5, 0.5, units=Meters}\n"),
                       "line 7: key 'map info': UTM map info needs a zone and North|South after the pixel size"},
         BadHeaderCase{"MapInfoBadZone", valid("map info = {UTM, 1, 1, 5, 4, 0.5, 0.5, 61, North, WGS-84}\n"),
@@ -223,7 +244,7 @@ TEST(EnviHeader, MissingFileIsAnInputError) {
     readEnviHeader(dir / "absent.hdr");
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), (dir / "absent.hdr").string() + ": file does not exist");
+    EXPECT_EQ(std::string(error.what()), (dir / "absent.hdr").string() + ": file not found");
   }
 }
 

@@ -47,13 +47,13 @@ TEST(MappedFile, ErrorsNameTheFile) {
     MappedFile map(dir / "absent.raw");
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), (dir / "absent.raw").string() + ": file does not exist");
+    EXPECT_EQ(std::string(error.what()), (dir / "absent.raw").string() + ": file not found");
   }
   try {
     MappedFile map(dir.path());
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), dir.path().string() + ": expected a regular file, found a directory");
+    EXPECT_EQ(std::string(error.what()), dir.path().string() + ": is a directory; expected a regular file");
   }
 }
 

@@ -211,7 +211,7 @@ TEST(PlyIo, MalformedFilesAreInputErrors) {
         "property uchar red\nproperty uchar green\nend_header\n1 2 3 4 5\n",
         ":element vertex: expected all of red, green and blue, or none");
   check("no_vertex.ply", "ply\nformat ascii 1.0\nend_header\n", ": expected a vertex element");
-  EXPECT_EQ(errorOf(dir / "absent.ply"), (dir / "absent.ply").string() + ": file does not exist");
+  EXPECT_EQ(errorOf(dir / "absent.ply"), (dir / "absent.ply").string() + ": file not found");
 
   // A binary file cut short.
   writePly(dir / "whole.ply", tetrahedron());

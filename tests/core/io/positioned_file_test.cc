@@ -38,7 +38,7 @@ TEST(PositionedFile, ErrorsNameTheFileAndWhere) {
     PositionedFile missing(dir / "absent.bin");
     FAIL() << "expected InputError";
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), (dir / "absent.bin").string() + ": file does not exist");
+    EXPECT_EQ(std::string(error.what()), (dir / "absent.bin").string() + ": file not found");
   }
   EXPECT_THROW(PositionedFile{dir.path()}, InputError);
 }

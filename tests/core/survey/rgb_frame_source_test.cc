@@ -70,19 +70,43 @@ TEST_F(RgbFrameSourceTest, MissingImageIsReportedAtItsCsvLine) {
   }
 }
 
-TEST_F(RgbFrameSourceTest, UndecodableImageNamesTheImageAndItsCsvLine) {
-  const auto csv = writeFrameList(2);
+TEST_F(RgbFrameSourceTest, ForeignFileIsReportedAtItsCsvLineWithoutDecoding) {
+  const auto csv = writeFrameList(3);
   testing::writeText(folder_ / "rgb" / "f1.png", "this is not a PNG");
-  const RgbFrameSource source = RgbFrameSource::fromFrameList(csv);  // existence only
   try {
-    source.frame(1);
+    RgbFrameSource::fromFrameList(csv);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), folder_ / "rgb" / "f1.png");
-    EXPECT_EQ(std::string(e.what()), (folder_ / "rgb" / "f1.png").string() +
-                                         ": cannot decode the image (listed at " + csv.string() +
-                                         ":line 3)");
+    EXPECT_EQ(std::string(e.what()),
+              csv.string() + ":line 3: column 'file': image 'f1.png' is not a PNG or JPEG image "
+                             "(it starts with 'this is ') (" +
+                  (folder_ / "rgb" / "f1.png").string() + ")");
   }
+}
+
+TEST_F(RgbFrameSourceTest, UndecodableImageNamesTheImageAndItsCsvLineInOneLine) {
+  const auto csv = writeFrameList(2);
+  // A valid PNG header (signature and IHDR) followed by damaged image data:
+  // it passes the header check and fails only when decoded.
+  const auto image = folder_ / "rgb" / "f1.png";
+  std::string png = testing::readText(image);
+  for (std::size_t i = 40; i < png.size(); ++i) png[i] = static_cast<char>(png[i] ^ 0x5A);
+  testing::writeText(image, png);
+  const RgbFrameSource source = RgbFrameSource::fromFrameList(csv);
+  ::testing::internal::CaptureStderr();
+  try {
+    source.frame(1);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), image);
+    const std::string prefix =
+        image.string() + ": cannot decode the image (listed at " + csv.string() + ":line 3)";
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  // What libpng printed went into the message, not onto the terminal.
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
 TEST_F(RgbFrameSourceTest, VideoGivesFrameCountTimesAndFramesInAnyOrder) {
@@ -126,7 +150,9 @@ TEST_F(RgbFrameSourceTest, MissingOrUnreadableVideo) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), garbage);
-    EXPECT_NE(std::string(e.what()).find("OpenCV cannot open the video"), std::string::npos)
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  garbage.string() + ": cannot open the video (unsupported container or codec?)", 0),
+              0u)
         << e.what();
   }
 }

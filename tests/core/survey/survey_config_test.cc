@@ -329,7 +329,7 @@ TEST_F(SurveyConfigTest, ValuesOutOfRange) {
   expectError("line 17, key uhi.time_offset_sigma_s: expected a number > 0, got -0.05");
   writeVariant("  sigma_attitude_deg: [0.05, 0.05, 0.2]", "  sigma_attitude_deg: [0.05, -1, 0.2]");
   expectError(
-      "line 25, key ins.sigma_attitude_deg: expected three numbers > 0, got -1 at position 2");
+      "line 25, key ins.sigma_attitude_deg: expected three numbers in (0, 180], got -1 at position 2");
   writeVariant("lat: 43.0", "lat: 95");
   expectError("line 26, key origin.lat: expected a number in [-90, 90], got 95");
   writeVariant("lon: 5.0", "lon: 181");
@@ -392,7 +392,7 @@ TEST_F(SurveyConfigTest, MissingFile) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), (folder_ / "absent.yaml").string() +
-                                         ": cannot open the file: No such file or directory");
+                                         ": file not found");
   }
 }
 

@@ -245,9 +245,10 @@ TEST_F(LoadSurveyTest, WavelengthsInMicrometresAreConvertedToNanometres) {
 
 TEST_F(LoadSurveyTest, FrameSizeMustMatchTheCamera) {
   replaceInFile(survey_ / "survey.yaml", "width: 160", "width: 161");
-  expectError(survey_ / "rgb/frame_0000.png", " frames are 160x120 pixels but " +
-                                                  (survey_ / "survey.yaml").string() +
-                                                  " gives rgb.camera width 161, height 120");
+  expectError(survey_ / "rgb/frames.csv", "line 2: column 'file': image 'frame_0000.png' is "
+                                         "160x120 pixels but " +
+                                             (survey_ / "survey.yaml").string() +
+                                             " gives rgb.camera width 161, height 120");
 }
 
 TEST_F(LoadSurveyTest, StreamsDisjointFromTheInsAreAnError) {
