@@ -6,6 +6,9 @@
 #   scripts/setup.sh           what building and testing need
 #   scripts/setup.sh --docs    also python3-numpy and python3-matplotlib, for the
 #                              scripts that draw the figures in docs/
+#   scripts/setup.sh --fuzz    also clang, its libFuzzer/sanitizer runtimes and
+#                              llvm-symbolizer, for scripts/fuzz.sh (docs/FUZZING.md)
+# The two flags can be combined.
 set -euo pipefail
 
 PACKAGES=(
@@ -15,12 +18,16 @@ PACKAGES=(
   libtbb-dev libcli11-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
-if [[ "${1:-}" == "--docs" ]]; then
-  PACKAGES+=(python3-numpy python3-matplotlib)
-elif [[ $# -gt 0 ]]; then
-  echo "usage: scripts/setup.sh [--docs]" >&2
-  exit 2
-fi
+for flag in "$@"; do
+  case "$flag" in
+    --docs) PACKAGES+=(python3-numpy python3-matplotlib) ;;
+    --fuzz) PACKAGES+=(clang libclang-rt-dev llvm) ;;
+    *)
+      echo "usage: scripts/setup.sh [--docs] [--fuzz]" >&2
+      exit 2
+      ;;
+  esac
+done
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -7,41 +7,19 @@
 #include <cstdlib>
 
 #include "pipelines/sample_survey.h"
+#include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
 
+using testing::quoted;
 using testing::readText;
+using testing::runHsmap;
+using testing::RunResult;
 using testing::replaceInFile;
 using testing::TempFolder;
 using testing::writeText;
-
-struct RunResult {
-  int exit_status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string quoted(const std::string& text) {
-  std::string result = "'";
-  for (char c : text) result += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return result + "'";
-}
-
-// Runs `hsmap <arguments>` with stdout and stderr captured in files of `temp`.
-RunResult runHsmap(const TempFolder& temp, const std::string& arguments) {
-  const auto out = temp / "stdout.txt";
-  const auto err = temp / "stderr.txt";
-  const std::string command = quoted(HSMAP_TOOL_PATH) + " " + arguments + " >" +
-                              quoted(out.string()) + " 2>" + quoted(err.string());
-  const int status = std::system(command.c_str());
-  RunResult result;
-  result.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = readText(out);
-  result.err = readText(err);
-  return result;
-}
 
 // The built-in sample survey, written once for this program.
 const std::filesystem::path& pristineSample() {
@@ -209,6 +187,46 @@ TEST_F(HsmapToolTest, SimulateTinyThenInspectSeesTheTruth) {
   EXPECT_EQ(inspect.exit_status, 0) << inspect.err;
   EXPECT_NE(inspect.out.find("survey 'tiny'"), std::string::npos) << inspect.out;
   EXPECT_NE(inspect.out.find("truth"), std::string::npos) << inspect.out;
+}
+
+// `hsmap run --until frontend` on the tiny simulated survey, through the real
+// binary: every frame posed, the front-end's files written, a summary.
+TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
+  const RunResult simulate =
+      runHsmap(temp_, "simulate --preset tiny --out " + quoted(survey_.string()));
+  ASSERT_EQ(simulate.exit_status, 0) << simulate.err;
+  const auto run_folder = temp_ / "run";
+  const RunResult run = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
+                                            quoted(run_folder.string()) + " --until frontend");
+  ASSERT_EQ(run.exit_status, 0) << run.err << run.out;
+  EXPECT_TRUE(run.err.empty()) << run.err;
+  const std::string frames = std::to_string(testing::countLines(survey_ / "rgb/frames.csv") - 1);
+  EXPECT_NE(run.out.find("front-end: " + frames + " of " + frames + " frames posed"),
+            std::string::npos)
+      << run.out;
+  for (const char* expected : {"frontend: ", "frames/s", "stages: load ", "peak memory"}) {
+    EXPECT_NE(run.out.find(expected), std::string::npos) << "missing '" << expected << "' in\n"
+                                                         << run.out;
+  }
+  for (const char* file : {"keyframes.csv", "observations.csv", "landmarks.csv", "frames.csv",
+                           "frame_stats.csv", "losses.csv", "frames.tum"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(run_folder / "frontend" / file)) << file;
+  }
+  EXPECT_FALSE(std::filesystem::exists(run_folder / "frontend.partial"));
+  // One TUM line per posed frame.
+  EXPECT_EQ(std::to_string(testing::countLines(run_folder / "frontend/frames.tum")), frames);
+
+  // A second run into the same folder needs --force; an unknown stage is a usage error.
+  const RunResult again = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
+                                              quoted(run_folder.string()));
+  EXPECT_EQ(again.exit_status, 1);
+  EXPECT_EQ(again.err, "error: " + (run_folder / "frontend").string() +
+                           " exists from an earlier run; pass --force to replace that stage's "
+                           "outputs\n");
+  const RunResult unknown = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
+                                                quoted(run_folder.string()) + " --until mesh");
+  EXPECT_EQ(unknown.exit_status, 1);
+  EXPECT_EQ(unknown.err, "error: unknown stage 'mesh' for --until; expected one of frontend\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

@@ -1,0 +1,277 @@
+#include "pipelines/frontend/frontend_outputs.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/io/atomic_file.h"
+#include "core/survey/csv_table.h"
+#include "core/survey/number_text.h"
+#include "core/util/input_error.h"
+
+namespace hsmap {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kKeyframesHeader{"keyframe", "frame", "t",  "segment", "x", "y",
+                                                "z",        "qw",    "qx", "qy",      "qz"};
+const std::vector<std::string> kObservationsHeader{"keyframe", "landmark", "u", "v"};
+const std::vector<std::string> kLandmarksHeader{"landmark", "x", "y", "z", "observations", "keyframes"};
+const std::vector<std::string> kFramesHeader{"frame", "t", "posed", "segment", "x", "y",
+                                             "z",     "qw", "qx",   "qy",      "qz"};
+const std::vector<std::string> kStatsHeader{
+    "frame",     "t",         "status",        "keyframe", "tracked", "inliers",        "new_corners",
+    "decode_ms", "preprocess_ms", "track_ms", "detect_ms", "pnp_ms", "triangulate_ms", "ba_ms"};
+const std::vector<std::string> kLossesHeader{"first_frame", "last_frame", "reason"};
+const std::vector<std::string> kSegmentsHeader{"segment", "first_frame", "last_frame", "keyframes",
+                                               "reference", "linked", "scale", "qw", "qx", "qy", "qz",
+                                               "x", "y", "z", "ins_rms_m", "note"};
+
+std::string header(const std::vector<std::string>& columns) {
+  std::string text;
+  for (std::size_t i = 0; i < columns.size(); ++i) text += (i ? "," : "") + columns[i];
+  return text + "\n";
+}
+
+std::string number(double value) { return formatDouble(value); }
+
+std::string pose(const SE3d& T) {
+  return number(T.t.x()) + "," + number(T.t.y()) + "," + number(T.t.z()) + "," + number(T.q.w()) + "," +
+         number(T.q.x()) + "," + number(T.q.y()) + "," + number(T.q.z());
+}
+
+std::string cleanText(std::string text) {
+  std::replace(text.begin(), text.end(), ',', ';');
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  AtomicFile file(path);
+  file.stream() << text;
+  file.commit();
+}
+
+SE3d readPose(const CsvTable& table, const CsvTable::Row& row, std::size_t first) {
+  const Eigen::Vector3d t(table.number(row, first), table.number(row, first + 1),
+                          table.number(row, first + 2));
+  const Eigen::Quaterniond q(table.number(row, first + 3), table.number(row, first + 4),
+                             table.number(row, first + 5), table.number(row, first + 6));
+  if (std::abs(q.norm() - 1.0) > 1e-6) {
+    throw InputError(table.file, InputError::atLine(row.line_number),
+                     "columns qw,qx,qy,qz: expected a unit quaternion");
+  }
+  return SE3d(q, t);
+}
+
+int id(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
+  return static_cast<int>(table.integer(row, column));
+}
+
+[[noreturn]] void bad(const CsvTable& table, const CsvTable::Row& row, const std::string& detail) {
+  throw InputError(table.file, InputError::atLine(row.line_number), detail);
+}
+
+bool flag(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
+  const long long v = table.integer(row, column);
+  if (v != 0 && v != 1) bad(table, row, "column '" + table.columns[column] + "': expected 0 or 1");
+  return v == 1;
+}
+
+}  // namespace
+
+void writeFrontendOutputs(const fs::path& run_folder, const FrontendResult& result) {
+  const fs::path final_folder = run_folder / frontend_files::folder;
+  const fs::path partial = AtomicFile::partialPathFor(final_folder);
+  fs::remove_all(partial);
+  fs::create_directories(partial);
+
+  std::ostringstream keyframes, observations, landmarks;
+  keyframes << header(kKeyframesHeader);
+  observations << header(kObservationsHeader);
+  for (const Keyframe& k : result.map.keyframes()) {
+    keyframes << k.id << "," << k.frame_index << "," << number(k.t) << "," << k.segment << ","
+              << pose(k.T_F_C) << "\n";
+    for (const auto& o : k.observations) {
+      observations << k.id << "," << o.landmark_id << "," << number(o.pixel.x()) << ","
+                   << number(o.pixel.y()) << "\n";
+    }
+  }
+  landmarks << header(kLandmarksHeader);
+  for (const Landmark& l : result.map.landmarks()) {
+    if (!l.valid) continue;
+    landmarks << l.id << "," << number(l.p_F.x()) << "," << number(l.p_F.y()) << ","
+              << number(l.p_F.z()) << "," << l.keyframe_ids.size() << ",";
+    for (std::size_t i = 0; i < l.keyframe_ids.size(); ++i) landmarks << (i ? " " : "") << l.keyframe_ids[i];
+    landmarks << "\n";
+  }
+  writeFile(partial / frontend_files::keyframes, keyframes.str());
+  writeFile(partial / frontend_files::observations, observations.str());
+  writeFile(partial / frontend_files::landmarks, landmarks.str());
+
+  std::ostringstream frames, stats, tum;
+  frames << header(kFramesHeader);
+  stats << header(kStatsHeader);
+  for (const FrameRecord& f : result.frames) {
+    frames << f.index << "," << number(f.t) << "," << (f.posed ? 1 : 0) << "," << f.segment << ",";
+    frames << (f.posed ? pose(f.T_F_C) : std::string(",,,,,,")) << "\n";
+    stats << f.index << "," << number(f.t) << "," << toString(f.status) << "," << (f.keyframe ? 1 : 0)
+          << "," << f.tracked << "," << f.inliers << "," << f.new_corners;
+    for (double ms : f.ms) stats << "," << number(ms);
+    stats << "\n";
+    if (f.posed) {
+      tum << number(f.t) << " " << number(f.T_F_C.t.x()) << " " << number(f.T_F_C.t.y()) << " "
+          << number(f.T_F_C.t.z()) << " " << number(f.T_F_C.q.x()) << " " << number(f.T_F_C.q.y())
+          << " " << number(f.T_F_C.q.z()) << " " << number(f.T_F_C.q.w()) << "\n";
+    }
+  }
+  writeFile(partial / frontend_files::frames, frames.str());
+  writeFile(partial / frontend_files::frame_stats, stats.str());
+  writeFile(partial / frontend_files::frames_tum, tum.str());
+
+  std::ostringstream losses, segments;
+  losses << header(kLossesHeader);
+  for (const auto& loss : result.losses) {
+    losses << loss.first_frame << "," << loss.last_frame << "," << cleanText(loss.reason) << "\n";
+  }
+  segments << header(kSegmentsHeader);
+  for (const auto& s : result.segments) {
+    const Eigen::Quaterniond& q = s.S_F_S.rotation();
+    const Eigen::Vector3d& t = s.S_F_S.translation();
+    segments << s.id << "," << s.first_frame << "," << s.last_frame << "," << s.keyframes << ","
+             << (s.reference ? 1 : 0) << "," << (s.linked ? 1 : 0) << "," << number(s.S_F_S.scale())
+             << "," << number(q.w()) << "," << number(q.x()) << "," << number(q.y()) << ","
+             << number(q.z()) << "," << number(t.x()) << "," << number(t.y()) << "," << number(t.z())
+             << "," << number(s.ins_rms_m) << "," << cleanText(s.note) << "\n";
+  }
+  writeFile(partial / frontend_files::losses, losses.str());
+  writeFile(partial / frontend_files::segments, segments.str());
+  std::ostringstream summary;
+  summary << result.summary() << "\n";
+  for (const auto& warning : result.warnings) summary << "warning: " << warning << "\n";
+  writeFile(partial / frontend_files::summary, summary.str());
+
+  fs::remove_all(final_folder);
+  fs::rename(partial, final_folder);
+}
+
+FrontendResult readFrontendOutputs(const fs::path& run_folder) {
+  const fs::path folder = run_folder / frontend_files::folder;
+  FrontendResult result;
+
+  // Keyframes, then landmarks, then the observations that tie them.
+  const CsvTable keyframe_table = readCsvTable(folder / frontend_files::keyframes, {kKeyframesHeader});
+  std::vector<Keyframe> keyframes;
+  for (const auto& row : keyframe_table.rows) {
+    Keyframe k;
+    k.id = id(keyframe_table, row, 0);
+    if (k.id != int(keyframes.size())) bad(keyframe_table, row, "keyframe ids must count 0, 1, 2, ...");
+    k.frame_index = id(keyframe_table, row, 1);
+    k.t = keyframe_table.number(row, 2);
+    k.segment = id(keyframe_table, row, 3);
+    k.T_F_C = readPose(keyframe_table, row, 4);
+    keyframes.push_back(std::move(k));
+  }
+  const CsvTable landmark_table = readCsvTable(folder / frontend_files::landmarks, {kLandmarksHeader});
+  std::vector<Landmark> landmarks;
+  for (const auto& row : landmark_table.rows) {
+    const int l = id(landmark_table, row, 0);
+    if (l < int(landmarks.size())) bad(landmark_table, row, "landmark ids must increase");
+    while (int(landmarks.size()) < l) {  // ids of removed landmarks: empty slots
+      Landmark gap;
+      gap.id = int(landmarks.size());
+      gap.valid = false;
+      landmarks.push_back(gap);
+    }
+    Landmark landmark;
+    landmark.id = l;
+    landmark.p_F = {landmark_table.number(row, 1), landmark_table.number(row, 2),
+                    landmark_table.number(row, 3)};
+    landmarks.push_back(landmark);
+  }
+  const CsvTable observation_table =
+      readCsvTable(folder / frontend_files::observations, {kObservationsHeader});
+  for (const auto& row : observation_table.rows) {
+    const int k = id(observation_table, row, 0);
+    const int l = id(observation_table, row, 1);
+    if (k < 0 || k >= int(keyframes.size())) bad(observation_table, row, "unknown keyframe " + std::to_string(k));
+    if (l < 0 || l >= int(landmarks.size()) || !landmarks[std::size_t(l)].valid) {
+      bad(observation_table, row, "unknown landmark " + std::to_string(l));
+    }
+    keyframes[std::size_t(k)].observations.push_back(
+        {l, Eigen::Vector2d(observation_table.number(row, 2), observation_table.number(row, 3))});
+    landmarks[std::size_t(l)].keyframe_ids.push_back(k);
+  }
+  for (const auto& row : landmark_table.rows) {
+    const Landmark& landmark = landmarks[std::size_t(id(landmark_table, row, 0))];
+    if (int(landmark.keyframe_ids.size()) != id(landmark_table, row, 4)) {
+      bad(landmark_table, row, "column 'observations' does not match observations.csv");
+    }
+  }
+  result.map.assign(std::move(keyframes), std::move(landmarks));
+
+  const CsvTable frame_table = readCsvTable(folder / frontend_files::frames, {kFramesHeader});
+  const CsvTable stats_table = readCsvTable(folder / frontend_files::frame_stats, {kStatsHeader});
+  if (stats_table.rows.size() != frame_table.rows.size()) {
+    throw InputError(stats_table.file, "", "expected one row per row of frames.csv");
+  }
+  for (std::size_t i = 0; i < frame_table.rows.size(); ++i) {
+    const auto& row = frame_table.rows[i];
+    const auto& stats = stats_table.rows[i];
+    FrameRecord f;
+    f.index = id(frame_table, row, 0);
+    f.t = frame_table.number(row, 1);
+    f.posed = flag(frame_table, row, 2);
+    f.segment = id(frame_table, row, 3);
+    if (f.posed) f.T_F_C = readPose(frame_table, row, 4);
+    if (id(stats_table, stats, 0) != f.index) bad(stats_table, stats, "frame does not match frames.csv");
+    try {
+      f.status = parseFrameStatus(stats.cells[2]);
+    } catch (const std::invalid_argument& error) {
+      bad(stats_table, stats, std::string("column 'status': ") + error.what());
+    }
+    f.keyframe = flag(stats_table, stats, 3);
+    f.tracked = id(stats_table, stats, 4);
+    f.inliers = id(stats_table, stats, 5);
+    f.new_corners = id(stats_table, stats, 6);
+    for (int s = 0; s < kFrontendStepCount; ++s) f.ms[std::size_t(s)] = stats_table.number(stats, 7 + std::size_t(s));
+    result.frames.push_back(f);
+  }
+  for (const Keyframe& k : result.map.keyframes()) {
+    for (auto& f : result.frames) {
+      if (f.index == k.frame_index) {
+        f.keyframe_id = k.id;
+        break;
+      }
+    }
+  }
+
+  const CsvTable loss_table = readCsvTable(folder / frontend_files::losses, {kLossesHeader});
+  for (const auto& row : loss_table.rows) {
+    result.losses.push_back({id(loss_table, row, 0), id(loss_table, row, 1), row.cells[2]});
+  }
+  const CsvTable segment_table = readCsvTable(folder / frontend_files::segments, {kSegmentsHeader});
+  for (const auto& row : segment_table.rows) {
+    SegmentRecord s;
+    s.id = id(segment_table, row, 0);
+    s.first_frame = id(segment_table, row, 1);
+    s.last_frame = id(segment_table, row, 2);
+    s.keyframes = id(segment_table, row, 3);
+    s.reference = flag(segment_table, row, 4);
+    s.linked = flag(segment_table, row, 5);
+    const Eigen::Quaterniond q(segment_table.number(row, 7), segment_table.number(row, 8),
+                               segment_table.number(row, 9), segment_table.number(row, 10));
+    const Eigen::Vector3d t(segment_table.number(row, 11), segment_table.number(row, 12),
+                            segment_table.number(row, 13));
+    s.S_F_S = Sim3(segment_table.number(row, 6), q, t);
+    s.ins_rms_m = segment_table.number(row, 14);
+    s.note = row.cells[15];
+    result.segments.push_back(s);
+  }
+  return result;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,92 @@
+#include "pipelines/frontend/frontend_result.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace hsmap {
+
+const char* toString(FrameStatus status) {
+  switch (status) {
+    case FrameStatus::tracking: return "tracking";
+    case FrameStatus::initialising: return "initialising";
+    case FrameStatus::lost: return "lost";
+    case FrameStatus::no_texture: return "no_texture";
+    case FrameStatus::undecodable: return "undecodable";
+  }
+  return "?";
+}
+
+FrameStatus parseFrameStatus(const std::string& name) {
+  for (FrameStatus s : {FrameStatus::tracking, FrameStatus::initialising, FrameStatus::lost,
+                        FrameStatus::no_texture, FrameStatus::undecodable}) {
+    if (name == toString(s)) return s;
+  }
+  throw std::invalid_argument("unknown frame status '" + name +
+                              "': expected tracking, initialising, lost, no_texture or undecodable");
+}
+
+const char* toString(FrontendStep step) {
+  switch (step) {
+    case FrontendStep::decode: return "decode";
+    case FrontendStep::preprocess: return "preprocess";
+    case FrontendStep::track: return "track";
+    case FrontendStep::detect: return "detect";
+    case FrontendStep::pnp: return "pnp";
+    case FrontendStep::triangulate: return "triangulate";
+    case FrontendStep::ba: return "ba";
+    case FrontendStep::count: break;
+  }
+  return "?";
+}
+
+int FrontendResult::posedFrameCount() const {
+  return int(std::count_if(frames.begin(), frames.end(), [](const FrameRecord& f) { return f.posed; }));
+}
+
+double FrontendResult::trackingFramesPerSecond() const {
+  double ms = 0.0;
+  for (FrontendStep step : {FrontendStep::track, FrontendStep::detect, FrontendStep::pnp,
+                            FrontendStep::triangulate, FrontendStep::ba}) {
+    ms += total_ms[std::size_t(step)];
+  }
+  return ms > 0.0 ? 1000.0 * double(frames.size()) / ms : 0.0;
+}
+
+std::string FrontendResult::summary() const {
+  std::ostringstream text;
+  char speed[64];
+  std::snprintf(speed, sizeof(speed), "%.1f frames/s (tracking alone %.1f)", frames_per_second,
+                trackingFramesPerSecond());
+  text << "front-end: " << posedFrameCount() << " of " << frames.size() << " frames posed, "
+       << map.keyframes().size() << " keyframes, " << map.validLandmarkCount() << " landmarks, "
+       << map.observationCount() << " observations, " << segments.size()
+       << (segments.size() == 1 ? " segment, " : " segments, ") << losses.size()
+       << (losses.size() == 1 ? " tracking loss" : " tracking losses") << "; " << speed;
+  char memory[64];
+  std::snprintf(memory, sizeof(memory), ", peak memory %.0f MB", peak_memory_mb);
+  text << memory;
+  for (const auto& loss : losses) {
+    text << "\n  lost frames " << loss.first_frame << "-" << loss.last_frame << ": " << loss.reason;
+  }
+  for (const auto& segment : segments) {
+    text << "\n  segment " << segment.id << " (frames " << segment.first_frame << "-"
+         << segment.last_frame << ", " << segment.keyframes << " keyframes): " << segment.note;
+  }
+  char steps[256];
+  std::snprintf(steps, sizeof(steps),
+                "\n  time per frame (ms): decode %.1f, preprocess %.1f, track %.1f, detect %.1f, "
+                "pnp %.1f, triangulate %.1f, ba %.1f",
+                total_ms[0] / std::max<std::size_t>(1, frames.size()),
+                total_ms[1] / std::max<std::size_t>(1, frames.size()),
+                total_ms[2] / std::max<std::size_t>(1, frames.size()),
+                total_ms[3] / std::max<std::size_t>(1, frames.size()),
+                total_ms[4] / std::max<std::size_t>(1, frames.size()),
+                total_ms[5] / std::max<std::size_t>(1, frames.size()),
+                total_ms[6] / std::max<std::size_t>(1, frames.size()));
+  text << steps;
+  return text.str();
+}
+
+}  // namespace hsmap

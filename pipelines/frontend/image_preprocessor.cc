@@ -1,0 +1,48 @@
+#include "pipelines/frontend/image_preprocessor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hsmap {
+
+ImagePreprocessor::ImagePreprocessor(const FrontendOptions& options, int width_px, int height_px)
+    : use_clahe_(options.use_clahe) {
+  if (use_clahe_) {
+    const int across = options.clahe_tiles_across;
+    const int down = std::max(1, static_cast<int>(std::lround(across * double(height_px) / width_px)));
+    clahe_ = cv::createCLAHE(options.clahe_clip_limit, cv::Size(across, down));
+  }
+}
+
+cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) const {
+  cv::Mat gray;
+  if (bgr.channels() == 3) {
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+  } else if (bgr.channels() == 1) {
+    gray = bgr.clone();
+  } else {
+    throw std::invalid_argument("ImagePreprocessor: expected a 1- or 3-channel 8-bit image");
+  }
+  if (quality != nullptr) *quality = measure(gray);
+  if (!use_clahe_) return gray;
+  cv::Mat equalised;
+  clahe_->apply(gray, equalised);
+  return equalised;
+}
+
+ImageQuality ImagePreprocessor::measure(const cv::Mat& gray) {
+  cv::Mat small;
+  cv::resize(gray, small, cv::Size(), 0.25, 0.25, cv::INTER_NEAREST);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(small, mean, stddev);
+  ImageQuality quality;
+  quality.mean_dn = mean[0];
+  quality.contrast_dn = stddev[0];
+  cv::Mat saturated = small >= 250;
+  quality.saturated_fraction =
+      small.total() == 0 ? 0.0 : double(cv::countNonZero(saturated)) / double(small.total());
+  return quality;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,180 @@
+#include "pipelines/frontend/frontend_outputs.h"
+
+#include <gtest/gtest.h>
+
+#include "core/util/input_error.h"
+#include "tests/support/temp_folder.h"
+
+namespace hsmap {
+namespace {
+
+FrontendResult sampleResult() {
+  FrontendResult result;
+  VisualMap& map = result.map;
+  map.addKeyframe(0, 36000.04, 0, SE3d(expSO3(Eigen::Vector3d(0.1, -0.2, 0.3)), Eigen::Vector3d(0.1, 1.0 / 3.0, -2.5)));
+  map.addKeyframe(7, 36000.32, 0, SE3d(Eigen::Quaterniond::Identity(), Eigen::Vector3d(1e-7, 0.0, 4.0)));
+  map.addKeyframe(20, 36000.84, 1, SE3d(expSO3(Eigen::Vector3d(0.0, 0.01, 0.0)), Eigen::Vector3d(2.0, 0.5, 0.25)));
+  for (int l = 0; l < 4; ++l) map.addLandmark(0, Eigen::Vector3d(0.1 * l, -0.3, 1.0 + 1.0 / (l + 3.0)));
+  map.addObservation(0, 0, {10.25, 20.5});
+  map.addObservation(1, 0, {12.125, 19.0});
+  map.addObservation(0, 1, {100.0, 200.0});
+  map.addObservation(1, 1, {101.0, 202.0});
+  map.addObservation(2, 1, {99.5, 201.0});
+  map.addObservation(0, 2, {5.0, 6.0});
+  map.addObservation(2, 3, {7.0, 8.0});
+  map.addObservation(1, 3, {7.5, 8.5});
+  map.removeLandmark(2);  // a removed landmark leaves a gap in the ids
+  for (int i = 0; i < 25; ++i) {
+    FrameRecord f;
+    f.index = i;
+    f.t = 36000.0 + 0.04 * (i + 1);
+    f.posed = i < 10 || i >= 20;
+    f.segment = i < 10 ? 0 : (i >= 20 ? 1 : -1);
+    f.status = f.posed ? FrameStatus::tracking : FrameStatus::no_texture;
+    if (f.posed) f.T_F_C = SE3d(expSO3(Eigen::Vector3d(0.01 * i, 0.0, 0.0)), Eigen::Vector3d(0.1 * i, 0.0, 0.0));
+    f.keyframe = i == 0 || i == 7 || i == 20;
+    f.keyframe_id = i == 0 ? 0 : (i == 7 ? 1 : (i == 20 ? 2 : -1));
+    f.tracked = 200 + i;
+    f.inliers = 150 + i;
+    f.new_corners = i % 3;
+    for (int s = 0; s < kFrontendStepCount; ++s) f.ms[std::size_t(s)] = 0.125 * (s + 1) + i;
+    result.frames.push_back(f);
+  }
+  result.losses.push_back({10, 19, "no texture: dark (mean 0.0 DN, contrast 0.0 DN)"});
+  SegmentRecord s0;
+  s0.id = 0;
+  s0.first_frame = 0;
+  s0.last_frame = 9;
+  s0.keyframes = 2;
+  s0.reference = s0.linked = true;
+  s0.note = "reference segment";
+  SegmentRecord s1 = s0;
+  s1.id = 1;
+  s1.first_frame = 20;
+  s1.last_frame = 24;
+  s1.keyframes = 1;
+  s1.reference = false;
+  s1.S_F_S = Sim3(0.75, expSO3(Eigen::Vector3d(0.0, 0.0, 0.5)), Eigen::Vector3d(1.0, 2.0, 3.0));
+  s1.ins_rms_m = 0.0625;
+  s1.note = "linked into F through the INS, scale 0.75";
+  result.segments = {s0, s1};
+  return result;
+}
+
+TEST(FrontendOutputs, RoundTripKeepsMapFramesLossesAndSegments) {
+  testing::TempFolder run;
+  const FrontendResult written = sampleResult();
+  writeFrontendOutputs(run.path(), written);
+  EXPECT_FALSE(std::filesystem::exists(run / "frontend.partial"));
+  const FrontendResult read = readFrontendOutputs(run.path());
+
+  ASSERT_EQ(read.map.keyframes().size(), written.map.keyframes().size());
+  for (std::size_t k = 0; k < written.map.keyframes().size(); ++k) {
+    const Keyframe& a = written.map.keyframes()[k];
+    const Keyframe& b = read.map.keyframes()[k];
+    EXPECT_EQ(a.frame_index, b.frame_index);
+    EXPECT_EQ(a.t, b.t);
+    EXPECT_EQ(a.segment, b.segment);
+    EXPECT_EQ(a.T_F_C.t, b.T_F_C.t);
+    EXPECT_EQ(a.T_F_C.q.coeffs(), b.T_F_C.q.coeffs());
+    ASSERT_EQ(a.observations.size(), b.observations.size());
+    for (std::size_t i = 0; i < a.observations.size(); ++i) {
+      EXPECT_EQ(a.observations[i].landmark_id, b.observations[i].landmark_id);
+      EXPECT_EQ(a.observations[i].pixel, b.observations[i].pixel);
+    }
+  }
+  ASSERT_EQ(read.map.landmarks().size(), written.map.landmarks().size());
+  for (std::size_t l = 0; l < written.map.landmarks().size(); ++l) {
+    const Landmark& a = written.map.landmarks()[l];
+    const Landmark& b = read.map.landmarks()[l];
+    EXPECT_EQ(a.valid, b.valid) << l;
+    if (!a.valid) continue;
+    EXPECT_EQ(a.p_F, b.p_F);
+    std::vector<int> ka = a.keyframe_ids, kb = b.keyframe_ids;
+    std::sort(ka.begin(), ka.end());
+    std::sort(kb.begin(), kb.end());
+    EXPECT_EQ(ka, kb);
+  }
+  ASSERT_EQ(read.frames.size(), written.frames.size());
+  for (std::size_t i = 0; i < written.frames.size(); ++i) {
+    const FrameRecord& a = written.frames[i];
+    const FrameRecord& b = read.frames[i];
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.t, b.t);
+    EXPECT_EQ(a.posed, b.posed);
+    EXPECT_EQ(a.segment, b.segment);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.keyframe, b.keyframe);
+    EXPECT_EQ(a.keyframe_id, b.keyframe_id);
+    EXPECT_EQ(a.tracked, b.tracked);
+    EXPECT_EQ(a.inliers, b.inliers);
+    EXPECT_EQ(a.new_corners, b.new_corners);
+    EXPECT_EQ(a.ms, b.ms);
+    if (a.posed) {
+      EXPECT_EQ(a.T_F_C.t, b.T_F_C.t);
+      EXPECT_EQ(a.T_F_C.q.coeffs(), b.T_F_C.q.coeffs());
+    }
+  }
+  ASSERT_EQ(read.losses.size(), 1u);
+  EXPECT_EQ(read.losses[0].first_frame, 10);
+  EXPECT_EQ(read.losses[0].last_frame, 19);
+  EXPECT_EQ(read.losses[0].reason, "no texture: dark (mean 0.0 DN; contrast 0.0 DN)");  // commas become ';'
+  ASSERT_EQ(read.segments.size(), 2u);
+  EXPECT_TRUE(read.segments[0].reference);
+  EXPECT_FALSE(read.segments[1].reference);
+  EXPECT_TRUE(read.segments[1].linked);
+  EXPECT_EQ(read.segments[1].S_F_S.scale(), 0.75);
+  EXPECT_LT((read.segments[1].S_F_S.translation() - Eigen::Vector3d(1.0, 2.0, 3.0)).norm(), 1e-15);
+  EXPECT_NEAR(read.segments[1].S_F_S.rotation().angularDistance(written.segments[1].S_F_S.rotation()), 0.0, 1e-12);
+  EXPECT_EQ(read.segments[1].ins_rms_m, 0.0625);
+  EXPECT_EQ(read.segments[1].note, "linked into F through the INS; scale 0.75");
+}
+
+TEST(FrontendOutputs, TumFileHoldsThePosedFramesInTumOrder) {
+  testing::TempFolder run;
+  const FrontendResult written = sampleResult();
+  writeFrontendOutputs(run.path(), written);
+  std::istringstream tum(testing::readText(run / "frontend" / "frames.tum"));
+  std::string line;
+  int rows = 0;
+  while (std::getline(tum, line)) {
+    double t, x, y, z, qx, qy, qz, qw;
+    std::istringstream cells(line);
+    ASSERT_TRUE(cells >> t >> x >> y >> z >> qx >> qy >> qz >> qw) << line;
+    const FrameRecord* frame = nullptr;
+    for (const auto& f : written.frames) {
+      if (f.t == t) frame = &f;
+    }
+    ASSERT_NE(frame, nullptr);
+    EXPECT_TRUE(frame->posed);
+    EXPECT_EQ(x, frame->T_F_C.t.x());
+    EXPECT_EQ(qw, frame->T_F_C.q.w());
+    EXPECT_EQ(qx, frame->T_F_C.q.x());
+    ++rows;
+  }
+  EXPECT_EQ(rows, written.posedFrameCount());
+}
+
+TEST(FrontendOutputs, RewritingReplacesTheFolderWhole) {
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), sampleResult());
+  testing::writeText(run / "frontend" / "stale.txt", "old");
+  writeFrontendOutputs(run.path(), sampleResult());
+  EXPECT_FALSE(std::filesystem::exists(run / "frontend" / "stale.txt"));
+}
+
+TEST(FrontendOutputs, ReaderNamesTheFileAndLineOfABadRow) {
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), sampleResult());
+  testing::replaceInFile(run / "frontend" / "observations.csv", "1,1,101,202", "1,9,101,202");
+  try {
+    readFrontendOutputs(run.path());
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("observations.csv:line 5"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("unknown landmark 9"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace hsmap
