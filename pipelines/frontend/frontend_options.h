@@ -41,7 +41,7 @@ struct FrontendOptions {
   int min_corners = 40;
 
   // ---- tracking (KLT) --------------------------------------------------------
-  int klt_window_px = 21;           // square window at the reference width; odd, >= 9 after scaling
+  int klt_window_px = 15;           // square window at the reference width; odd, >= 9 after scaling
   int klt_pyramid_levels = 3;       // levels above the full image
   int klt_max_iterations = 10;
   double klt_epsilon = 0.03;        // pixel change that ends a KLT iteration
