@@ -8,8 +8,9 @@ same, known camera (COLMAP's FULL_OPENCV model with the survey's
 pinhole-radtan intrinsics, held fixed):
   - hsmap: `hsmap run SUB --until frontend` on a survey folder SUB that lists
     only those frames (the other files are links to SURVEY's);
-  - COLMAP (Debian's `colmap`, CPU only): feature_extractor (SIFT),
-    sequential_matcher, mapper, model_converter to text.
+  - COLMAP (Debian's `colmap`, CPU only): feature_extractor (SIFT, at most
+    SIFT_FEATURES per image), sequential_matcher (each frame against the
+    next SEQUENTIAL_OVERLAP), mapper, model_converter to text.
 Each is timed as a whole process (wall clock). The registered frames' camera
 centres are aligned to truth/rgb_poses.csv with the same Sim(3) (Umeyama)
 and the RMS position error is reported, also as % of the path length of
@@ -27,6 +28,13 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from frontend_accuracy import read_rows, umeyama  # noqa: E402
+
+
+# COLMAP settings for a video on 2 CPU cores: SIFT features per image and
+# the number of following frames each frame is matched with (COLMAP's
+# defaults, 8192 and 10 plus quadratic overlap, take about an hour here).
+SIFT_FEATURES = 2000
+SEQUENTIAL_OVERLAP = 5
 
 
 def quaternion_to_matrix(w, x, y, z):
@@ -114,9 +122,11 @@ def main():
     start = time.monotonic()
     run(["colmap", "feature_extractor", "--database_path", database, "--image_path", images,
          "--ImageReader.camera_model", "FULL_OPENCV", "--ImageReader.single_camera", "1",
-         "--ImageReader.camera_params", params, "--SiftExtraction.use_gpu", "0"], log)
+         "--ImageReader.camera_params", params, "--SiftExtraction.use_gpu", "0",
+         "--SiftExtraction.max_num_features", str(SIFT_FEATURES)], log)
     run(["colmap", "sequential_matcher", "--database_path", database,
-         "--SiftMatching.use_gpu", "0"], log)
+         "--SiftMatching.use_gpu", "0", "--SequentialMatching.overlap", str(SEQUENTIAL_OVERLAP),
+         "--SequentialMatching.quadratic_overlap", "0"], log)
     run(["colmap", "mapper", "--database_path", database, "--image_path", images,
          "--output_path", sparse, "--Mapper.ba_refine_focal_length", "0",
          "--Mapper.ba_refine_principal_point", "0", "--Mapper.ba_refine_extra_params", "0"], log)

@@ -23,6 +23,7 @@ done
 hsmap="$build/tools/hsmap"
 [[ -x "$hsmap" ]] || { echo "error: $hsmap not found; build it with scripts/build.sh --target hsmap" >&2; exit 1; }
 work="${WORK_DIR:-/tmp}"
+steps=()
 echo "| survey | frames posed | keyframes | landmarks | aligned RMS | % of path | losses | frames/s (with decoding) | frames/s (tracking alone) | wall time | peak memory |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for survey in "${surveys[@]}"; do
@@ -45,4 +46,8 @@ for survey in "${surveys[@]}"; do
   printf '| %s | %s | %s | %s | %s mm | %s %% | %s | %s | %s | %s | %d MB |\n' \
     "$name" "$posed" "$keyframes" "$landmarks" "$rms_mm" \
     "$(value percent_of_path)" "$losses" "$fps" "$tracking" "$wall" "$((rss_kb / 1024))"
+  steps+=("$name: $(grep -m1 "time per frame (ms)" "$run.log" | sed 's/^ *//')")
 done
+echo
+echo "Time per frame and step (decode and preprocess run on the prefetch thread):"
+for line in "${steps[@]}"; do echo "  $line"; done
