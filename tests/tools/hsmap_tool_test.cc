@@ -6,13 +6,14 @@
 
 #include <cstdlib>
 
-#include "pipelines/sample_survey.h"
+#include "tests/support/pristine_sample.h"
 #include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
 
+using testing::pristineSample;
 using testing::quoted;
 using testing::readText;
 using testing::runHsmap;
@@ -21,15 +22,6 @@ using testing::replaceInFile;
 using testing::TempFolder;
 using testing::writeText;
 
-// The built-in sample survey, written once for this program.
-const std::filesystem::path& pristineSample() {
-  static const TempFolder folder("tool-pristine");
-  static const std::filesystem::path sample = [] {
-    writeSampleSurvey(folder / "sample");
-    return folder / "sample";
-  }();
-  return sample;
-}
 
 class HsmapToolTest : public ::testing::Test {
  protected:

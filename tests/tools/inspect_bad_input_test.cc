@@ -11,13 +11,14 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "pipelines/sample_survey.h"
+#include "tests/support/pristine_sample.h"
 #include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
 
+using testing::pristineSample;
 using testing::quoted;
 using testing::readText;
 using testing::replaceInFile;
@@ -26,14 +27,6 @@ using testing::RunResult;
 using testing::TempFolder;
 using testing::writeText;
 
-const std::filesystem::path& pristineSample() {
-  static const TempFolder folder("inspect-bad-pristine");
-  static const std::filesystem::path sample = [] {
-    writeSampleSurvey(folder / "sample");
-    return folder / "sample";
-  }();
-  return sample;
-}
 
 // 1-based line of the first occurrence of `needle` in `file`.
 long long lineOf(const std::filesystem::path& file, const std::string& needle) {
