@@ -1,5 +1,5 @@
 // The factor-graph engine on survey-sized synthetic problems (the transect of
-// tests/solvers/synthetic_transect.h, scaled up), solved from a noisy start
+// tests/support/synthetic_transect.h, scaled up), solved from a noisy start
 // with the default SolverOptions (Levenberg-Marquardt, SPARSE_SCHUR with
 // SuiteSparse, every hardware thread):
 //
@@ -32,7 +32,7 @@
 #include "factors/spline_timing.h"
 #include "factors/time_offset_prior_factor.h"
 #include "solvers/graph_solver.h"
-#include "tests/solvers/synthetic_transect.h"
+#include "tests/support/synthetic_transect.h"
 
 namespace hsmap {
 namespace {

@@ -1,6 +1,7 @@
 # Helpers that keep the per-folder CMakeLists short: a library is the .cc files
 # of one folder (header-only folders become INTERFACE libraries), a test
-# program is the *_test.cc files of one tests/ sub-folder.
+# program is the *_test.cc files of one tests/ sub-folder (and may use the
+# shared fixtures of tests/support, hsmap_test_support).
 include_guard(GLOBAL)
 
 function(hsmap_library name dir)
@@ -24,7 +25,7 @@ function(hsmap_test_program name dir)
     return()
   endif()
   add_executable(${name} ${sources})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} hsmap_test_support GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE HSMAP_TOOL_PATH="$<TARGET_FILE:hsmap>")
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 endfunction()

@@ -12,7 +12,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config time
+  build-essential cmake ninja-build pkg-config time python3
   libeigen3-dev libceres-dev libsuitesparse-dev
   libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev
   libtbb-dev libcli11-dev libyaml-cpp-dev

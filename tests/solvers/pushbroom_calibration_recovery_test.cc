@@ -16,7 +16,7 @@
 #include "factors/spline_timing.h"
 #include "solvers/graph_solver.h"
 #include "solvers/marginal_covariance.h"
-#include "tests/solvers/synthetic_transect.h"
+#include "tests/support/synthetic_transect.h"
 
 namespace hsmap {
 namespace {

@@ -14,7 +14,7 @@
 #include "factors/ins_position_factor.h"
 #include "factors/reprojection_factor.h"
 #include "solvers/graph_solver.h"
-#include "tests/solvers/synthetic_transect.h"
+#include "tests/support/synthetic_transect.h"
 #include "tests/solvers/test_factors.h"
 
 namespace hsmap {

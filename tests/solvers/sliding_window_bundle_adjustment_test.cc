@@ -19,7 +19,7 @@
 #include "core/geometry/pinhole_radtan_camera.h"
 #include "factors/reprojection_factor.h"
 #include "solvers/graph_solver.h"
-#include "tests/solvers/synthetic_transect.h"
+#include "tests/support/synthetic_transect.h"
 
 namespace hsmap {
 namespace {

@@ -19,7 +19,7 @@
 #include "factors/ceres_factor.h"
 #include "factors/spline_timing.h"
 #include "solvers/graph_solver.h"
-#include "tests/solvers/synthetic_transect.h"
+#include "tests/support/synthetic_transect.h"
 
 namespace hsmap {
 namespace {
