@@ -112,6 +112,11 @@ void FrameTracker::markLost(FrameRecord& record, FrameStatus status, const std::
   }
 }
 
+void FrameTracker::sortFrameObservationsFrom(std::size_t first) {
+  std::sort(frame_observations_.begin() + std::ptrdiff_t(first), frame_observations_.end(),
+            [](const FrameObservation& a, const FrameObservation& b) { return a.landmark < b.landmark; });
+}
+
 void FrameTracker::endSegment() {
   state_ = State::initialising;
   tracks_.clear();
@@ -296,13 +301,19 @@ bool FrameTracker::tryInitialise(const PrefetchedFrame& frame, FrameRecord& reco
   const int kf0 = map_.addKeyframe(reference_frame_, reference_t_, segment_, SE3d());
   const int kf1 = map_.addKeyframe(frame.index, frame.t, segment_, start.T_C1_C2);
   segments_.back().keyframe_ids = {kf0, kf1};
+  // The two keyframes' poses rest on the landmarks of the start: those are
+  // their frame observations (the reference frame's now, this frame's after
+  // the buffered frames between them, to keep the list in frame order).
   std::map<int, int> track_landmarks;
+  std::vector<FrameObservation> current_observations;
   for (std::size_t i = 0; i < ids.size(); ++i) {
     if (!start.p_C1[i]) continue;
     const int l = map_.addLandmark(segment_, *start.p_C1[i]);
     map_.addObservation(kf0, l, p1[i]);
     map_.addObservation(kf1, l, p2[i]);
     track_landmarks[ids[i]] = l;
+    frame_observations_.push_back({reference_frame_, l, float(p1[i].x()), float(p1[i].y())});
+    current_observations.push_back({frame.index, l, float(p2[i].x()), float(p2[i].y())});
   }
   for (auto& track : tracks_) {
     const auto it = track_landmarks.find(track.id);
@@ -323,6 +334,7 @@ bool FrameTracker::tryInitialise(const PrefetchedFrame& frame, FrameRecord& reco
   reference.keyframe = true;
   reference.keyframe_id = kf0;
   reference.segment = segment_;
+  reference.inliers = start.landmarks;
   anchors_[reference_record_] = {kf0, SE3d()};
   record.posed = true;
   record.T_F_C = start.T_C1_C2;
@@ -333,6 +345,8 @@ bool FrameTracker::tryInitialise(const PrefetchedFrame& frame, FrameRecord& reco
   record.status = FrameStatus::tracking;
   anchors_.back() = {kf1, SE3d()};
   poseBufferedFrames(track_landmarks);
+  frame_observations_.insert(frame_observations_.end(), current_observations.begin(),
+                             current_observations.end());
 
   state_ = State::tracking;
   failed_frames_ = 0;
@@ -372,6 +386,7 @@ void FrameTracker::poseBufferedFrames(const std::map<int, int>& track_landmarks)
     FrameRecord& record = records_[buffered.record];
     if (record.posed) continue;  // the current frame
     std::vector<PoseCorrespondence> correspondences;
+    std::vector<int> correspondence_landmark;
     for (const auto& [track_id, pixel] : buffered.track_pixels) {
       const auto it = track_landmarks.find(track_id);
       if (it == track_landmarks.end()) continue;
@@ -380,6 +395,7 @@ void FrameTracker::poseBufferedFrames(const std::map<int, int>& track_landmarks)
       c.p_F = map_.landmark(it->second).p_F;
       c.pixel = toEigen(pixel);
       correspondences.push_back(c);
+      correspondence_landmark.push_back(it->second);
     }
     const double alpha = t1 > reference_t_ ? (record.t - reference_t_) / (t1 - reference_t_) : 0.0;
     const SE3d prediction = SE3d::interpolate(SE3d(), T_S_C1, alpha);
@@ -394,6 +410,13 @@ void FrameTracker::poseBufferedFrames(const std::map<int, int>& track_landmarks)
     record.segment = segment_;
     record.status = FrameStatus::initialising;
     anchors_[buffered.record] = {kf0, estimate.T_F_C};  // KF0 is the identity of S
+    const std::size_t first = frame_observations_.size();
+    for (std::size_t j = 0; j < correspondences.size(); ++j) {
+      if (!estimate.inliers[j]) continue;
+      const Eigen::Vector2d& pixel = correspondences[j].pixel;  // a float, from KLT
+      frame_observations_.push_back({record.index, correspondence_landmark[j], float(pixel.x()), float(pixel.y())});
+    }
+    sortFrameObservationsFrom(first);
   }
 }
 
@@ -469,11 +492,19 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
     markLost(record, FrameStatus::lost, "pose failed: " + estimate.failure);
     return;
   }
-  // Commit: outlier tracks of landmarks are dropped (KLT slid off the corner).
+  // Commit: outlier tracks of landmarks are dropped (KLT slid off the corner);
+  // the inliers are the frame's observations.
   std::vector<bool> keep(candidates.size(), true);
+  const std::size_t first_observation = frame_observations_.size();
   for (std::size_t j = 0; j < correspondences.size(); ++j) {
-    if (!estimate.inliers[j]) keep[correspondence_track[j]] = false;
+    const Track& track = candidates[correspondence_track[j]];
+    if (estimate.inliers[j]) {
+      frame_observations_.push_back({frame.index, track.landmark, track.pixel.x, track.pixel.y});
+    } else {
+      keep[correspondence_track[j]] = false;
+    }
   }
+  sortFrameObservationsFrom(first_observation);
   tracks_.clear();
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (keep[i]) tracks_.push_back(std::move(candidates[i]));

@@ -27,11 +27,17 @@
 // camera, median depth 1). A frame that is not a keyframe stores its pose
 // relative to the last keyframe (T_K_C), so that when bundle adjustment
 // later moves that keyframe the frame moves with it (finish()).
+//
+// Every posed frame also keeps the correspondences its pose rests on
+// (frameObservations(): the final PnP inliers, or the two-view start's
+// landmarks for a segment's first two keyframes), in segment landmark ids;
+// the runner maps them into the linked map.
 
 #include <map>
 #include <memory>
 #include <string>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -81,6 +87,11 @@ class FrameTracker {
   const std::map<int, std::string>& lossReasons() const { return loss_reasons_; }
   // "reference 12, tried 13-40: median parallax ... below ..." per reference frame.
   const std::vector<std::string>& initialisationAttempts() const { return init_attempts_; }
+  // Of every frame posed so far, sorted by frame, then landmark (ids of map();
+  // some may have been removed from it since).
+  const std::vector<FrameObservation>& frameObservations() const { return frame_observations_; }
+  // Moves them out (the tracker keeps none), for the runner.
+  std::vector<FrameObservation> takeFrameObservations() { return std::exchange(frame_observations_, {}); }
 
  private:
   struct Sighting {
@@ -109,6 +120,8 @@ class FrameTracker {
   void poseBufferedFrames(const std::map<int, int>& track_landmarks);
   void makeKeyframe(const PrefetchedFrame& frame, FrameRecord& record, const cv::Mat& gray);
   void markLost(FrameRecord& record, FrameStatus status, const std::string& reason);
+  // Sorts the observations appended since `first` (one frame's) by landmark.
+  void sortFrameObservationsFrom(std::size_t first);
   // The current segment ends (its frames keep their poses); re-initialise.
   void endSegment();
   SE3d predictPose(double t) const;
@@ -130,6 +143,7 @@ class FrameTracker {
   std::vector<SegmentSpan> segments_;
   std::map<int, std::string> loss_reasons_;
   std::vector<std::string> init_attempts_;
+  std::vector<FrameObservation> frame_observations_;
 
   enum class State { initialising, tracking } state_ = State::initialising;
   std::vector<Track> tracks_;

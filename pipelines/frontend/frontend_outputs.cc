@@ -1,6 +1,8 @@
 #include "pipelines/frontend/frontend_outputs.h"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -8,6 +10,7 @@
 #include "core/survey/csv_table.h"
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
+#include "core/util/text_file.h"
 
 namespace hsmap {
 
@@ -24,6 +27,7 @@ const std::vector<std::string> kFramesHeader{"frame", "t", "posed", "segment", "
 const std::vector<std::string> kStatsHeader{
     "frame",     "t",         "status",        "keyframe", "tracked", "inliers",        "new_corners",
     "decode_ms", "preprocess_ms", "track_ms", "detect_ms", "pnp_ms", "triangulate_ms", "ba_ms"};
+const std::vector<std::string> kFrameObservationsHeader{"frame", "landmark", "u", "v"};
 const std::vector<std::string> kLossesHeader{"first_frame", "last_frame", "reason"};
 const std::vector<std::string> kSegmentsHeader{"segment", "first_frame", "last_frame", "keyframes",
                                                "reference", "linked", "scale", "qw", "qx", "qy", "qz",
@@ -36,6 +40,28 @@ std::string header(const std::vector<std::string>& columns) {
 }
 
 std::string number(double value) { return formatDouble(value); }
+
+// A float pixel in its own shortest round-trip form ("123.45679", not the
+// 17 digits of the double it converts to): read back as a float, exact.
+std::string pixelText(float value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof(text), value);
+  return std::string(text, result.ptr);
+}
+
+float readPixel(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
+  table.number(row, column);  // the strict checks and their messages
+  const std::string_view cell = trimBlanks(row.cells[column]);
+  const std::size_t sign = (!cell.empty() && cell.front() == '+') ? 1 : 0;
+  float value = 0.0f;
+  const auto result = std::from_chars(cell.data() + sign, cell.data() + cell.size(), value);
+  if (result.ec != std::errc() || result.ptr != cell.data() + cell.size() || !std::isfinite(value)) {
+    throw InputError(table.file, InputError::atLine(row.line_number),
+                     "column '" + table.columns[column] + "': expected a pixel coordinate, got '" +
+                         std::string(cell) + "'");
+  }
+  return value;
+}
 
 std::string pose(const SE3d& T) {
   return number(T.t.x()) + "," + number(T.t.y()) + "," + number(T.t.z()) + "," + number(T.q.w()) + "," +
@@ -74,6 +100,84 @@ int id(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
 [[noreturn]] void bad(const CsvTable& table, const CsvTable::Row& row, const std::string& detail) {
   throw InputError(table.file, InputError::atLine(row.line_number), detail);
 }
+
+// The rows of a CSV table one at a time, under the rules and with the
+// messages of csv_table.h (the header, an empty file and the text checks go
+// through the same functions), except that a table with no row is accepted
+// (a run without losses). frame_observations.csv is the reason: ~3 million
+// rows on a 100 m transect, which as a CsvTable of strings would take ~180
+// bytes a row; here the text is held once and one row is parsed at a time.
+class CsvRowReader {
+ public:
+  // Not copied or moved: body_ views text_.
+  CsvRowReader(const CsvRowReader&) = delete;
+  CsvRowReader& operator=(const CsvRowReader&) = delete;
+  CsvRowReader(const fs::path& file, const std::vector<std::string>& columns)
+      : text_(normaliseText(readTextFile(file, kMaxCsvBytes), file, TextEncoding::utf8)) {
+    // Blank lines (and blanks) at the end are harmless; drop them.
+    std::size_t end = text_.find_last_not_of(" \t\n");
+    end = end == std::string::npos ? 0 : end + 1;
+    body_ = std::string_view(text_).substr(0, end);
+    header_end_ = std::min(body_.find('\n'), body_.size());
+    if (body_.empty()) parseCsvTable(body_, file, {columns});  // throws: empty file
+    // The header, checked by the table parser itself (with a blank row: it
+    // refuses a table without one).
+    table_ = parseCsvTable(std::string(body_.substr(0, header_end_)) + "\n" + std::string(columns.size() - 1, ','),
+                           file, {columns});
+    table_.rows.clear();
+  }
+
+  // Data rows, counting any blank line among them (for reserve()).
+  std::size_t rowCountBound() const {
+    return header_end_ == body_.size() ? 0 : std::size_t(std::count(body_.begin(), body_.end(), '\n'));
+  }
+
+  // Calls on_row(table, row) for every data row in order.
+  template <class OnRow>
+  void forEach(OnRow on_row) const {
+    CsvTable::Row row;
+    row.cells.resize(table_.columns.size());
+    row.line_number = 1;
+    for (std::size_t start = header_end_ + 1; start < body_.size();) {
+      const std::size_t stop = std::min(body_.find('\n', start), body_.size());
+      const std::string_view line = body_.substr(start, stop - start);
+      ++row.line_number;
+      if (trimBlanks(line).empty()) {
+        throw InputError(table_.file, InputError::atLine(row.line_number),
+                         "blank line inside the table; expected a row '" + joinedColumns() + "'");
+      }
+      std::size_t count = 0;
+      for (std::size_t cell_start = 0;;) {
+        const std::size_t comma = line.find(',', cell_start);
+        const std::string_view cell =
+            line.substr(cell_start, comma == std::string_view::npos ? std::string_view::npos : comma - cell_start);
+        if (count < row.cells.size()) row.cells[count].assign(trimBlanks(cell));
+        ++count;
+        if (comma == std::string_view::npos) break;
+        cell_start = comma + 1;
+      }
+      if (count != row.cells.size()) {
+        throw InputError(table_.file, InputError::atLine(row.line_number),
+                         "expected " + std::to_string(row.cells.size()) + " columns (" + joinedColumns() +
+                             "), got " + std::to_string(count));
+      }
+      on_row(table_, row);
+      start = stop + 1;
+    }
+  }
+
+ private:
+  std::string joinedColumns() const {
+    std::string text;
+    for (std::size_t i = 0; i < table_.columns.size(); ++i) text += (i ? "," : "") + table_.columns[i];
+    return text;
+  }
+
+  std::string text_;
+  std::string_view body_;
+  std::size_t header_end_ = 0;
+  CsvTable table_;
+};
 
 bool flag(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
   const long long v = table.integer(row, column);
@@ -127,6 +231,16 @@ void writeFrontendOutputs(const fs::path& run_folder, const FrontendResult& resu
           << number(f.T_F_C.t.z()) << " " << number(f.T_F_C.q.x()) << " " << number(f.T_F_C.q.y())
           << " " << number(f.T_F_C.q.z()) << " " << number(f.T_F_C.q.w()) << "\n";
     }
+  }
+  {
+    // The largest file (hundreds of thousands of rows): streamed, not built in memory.
+    AtomicFile file(partial / frontend_files::frame_observations);
+    std::ostream& out = file.stream();
+    out << header(kFrameObservationsHeader);
+    for (const FrameObservation& o : result.frame_observations) {
+      out << o.frame << ',' << o.landmark << ',' << pixelText(o.u) << ',' << pixelText(o.v) << '\n';
+    }
+    file.commit();
   }
   writeFile(partial / frontend_files::frames, frames.str());
   writeFile(partial / frontend_files::frame_stats, stats.str());
@@ -249,10 +363,43 @@ FrontendResult readFrontendOutputs(const fs::path& run_folder) {
     }
   }
 
-  const CsvTable loss_table = readCsvTable(folder / frontend_files::losses, {kLossesHeader});
-  for (const auto& row : loss_table.rows) {
-    result.losses.push_back({id(loss_table, row, 0), id(loss_table, row, 1), row.cells[2]});
+  // Frame observations: of posed frames and existing landmarks, in order.
+  std::vector<bool> posed;
+  for (const FrameRecord& f : result.frames) {
+    if (f.index < 0) continue;
+    if (f.index >= int(posed.size())) posed.resize(std::size_t(f.index) + 1, false);
+    posed[std::size_t(f.index)] = f.posed;
   }
+  {
+    const CsvRowReader rows(folder / frontend_files::frame_observations, kFrameObservationsHeader);
+    result.frame_observations.reserve(rows.rowCountBound());
+    rows.forEach([&](const CsvTable& table, const CsvTable::Row& row) {
+      FrameObservation o;
+      o.frame = id(table, row, 0);
+      o.landmark = id(table, row, 1);
+      if (o.frame < 0 || o.frame >= int(posed.size()) || !posed[std::size_t(o.frame)]) {
+        bad(table, row, "frame " + std::to_string(o.frame) + " is not a posed frame of frames.csv");
+      }
+      if (o.landmark < 0 || o.landmark >= int(result.map.landmarks().size()) ||
+          !result.map.landmark(o.landmark).valid) {
+        bad(table, row, "unknown landmark " + std::to_string(o.landmark));
+      }
+      if (!result.frame_observations.empty()) {
+        const FrameObservation& previous = result.frame_observations.back();
+        if (o.frame < previous.frame || (o.frame == previous.frame && o.landmark <= previous.landmark)) {
+          bad(table, row, "rows must be sorted by frame, then landmark, each pair once");
+        }
+      }
+      o.u = readPixel(table, row, 2);
+      o.v = readPixel(table, row, 3);
+      result.frame_observations.push_back(o);
+    });
+  }
+
+  CsvRowReader(folder / frontend_files::losses, kLossesHeader)
+      .forEach([&](const CsvTable& table, const CsvTable::Row& row) {
+        result.losses.push_back({id(table, row, 0), id(table, row, 1), row.cells[2]});
+      });
   const CsvTable segment_table = readCsvTable(folder / frontend_files::segments, {kSegmentsHeader});
   for (const auto& row : segment_table.rows) {
     SegmentRecord s;

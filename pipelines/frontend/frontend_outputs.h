@@ -9,6 +9,9 @@
 //                                                                     empty when posed = 0)
 //   frame_stats.csv   frame,t,status,keyframe,tracked,inliers,new_corners,
 //                     decode_ms,preprocess_ms,track_ms,detect_ms,pnp_ms,triangulate_ms,ba_ms
+//   frame_observations.csv
+//                     frame,landmark,u,v                              the 2D-3D correspondences each posed
+//                                                                     frame's pose rests on (distorted px)
 //   losses.csv        first_frame,last_frame,reason
 //   segments.csv      segment,first_frame,last_frame,keyframes,reference,linked,
 //                     scale,qw,qx,qy,qz,x,y,z,ins_rms_m,note          S_F_S of each segment
@@ -21,10 +24,22 @@
 // shortest round-trip form (number_text.h), so read -> write is lossless.
 // Text cells (reasons, notes) never contain commas: they are replaced by ';'.
 //
+// frame_observations.csv holds, for every posed frame (keyframes included),
+// the landmarks its pose was computed from: the final PnP inliers after the
+// motion-only refinement (the two-view start's landmarks for a segment's
+// first two keyframes), sorted by frame then landmark, each pair once, only
+// landmarks of landmarks.csv. u,v are floats (as KLT measured them) in their
+// own shortest round-trip form. It lets a later stage re-pose every frame
+// against refined landmarks. It is the folder's largest file: ~28 bytes a
+// row, ~500 rows a posed frame on the simulated surveys (17.5 MB for the
+// 1,201 frames of `rugged`); it is written and read a row at a time.
+//
 // readFrontendOutputs() reads the folder back into a FrontendResult (map,
-// frames with their statistics, losses, segments; not the timings totals or
-// warnings), with the strict CSV rules of csv_table.h: errors are InputError
-// naming the file and line.
+// frames with their statistics, frame observations, losses, segments; not the
+// timings totals or warnings), with the strict CSV rules of csv_table.h
+// (losses.csv and frame_observations.csv may have no row): errors are
+// InputError naming the file and line; a frame observation of a frame that
+// is not posed or of a landmark not in landmarks.csv is one.
 
 #include <filesystem>
 
@@ -39,6 +54,7 @@ inline constexpr const char* observations = "observations.csv";
 inline constexpr const char* landmarks = "landmarks.csv";
 inline constexpr const char* frames = "frames.csv";
 inline constexpr const char* frame_stats = "frame_stats.csv";
+inline constexpr const char* frame_observations = "frame_observations.csv";
 inline constexpr const char* losses = "losses.csv";
 inline constexpr const char* segments = "segments.csv";
 inline constexpr const char* frames_tum = "frames.tum";

@@ -41,6 +41,14 @@ const char* toString(FrontendStep step) {
   return "?";
 }
 
+std::span<const FrameObservation> FrontendResult::observationsOfFrame(int frame) const {
+  const auto first = std::lower_bound(frame_observations.begin(), frame_observations.end(), frame,
+                                      [](const FrameObservation& o, int f) { return o.frame < f; });
+  const auto last = std::upper_bound(first, frame_observations.end(), frame,
+                                     [](int f, const FrameObservation& o) { return f < o.frame; });
+  return {first, last};
+}
+
 int FrontendResult::posedFrameCount() const {
   return int(std::count_if(frames.begin(), frames.end(), [](const FrameRecord& f) { return f.posed; }));
 }
@@ -61,7 +69,8 @@ std::string FrontendResult::summary() const {
                 trackingFramesPerSecond());
   text << "front-end: " << posedFrameCount() << " of " << frames.size() << " frames posed, "
        << map.keyframes().size() << " keyframes, " << map.validLandmarkCount() << " landmarks, "
-       << map.observationCount() << " observations, " << segments.size()
+       << map.observationCount() << " observations, " << frame_observations.size()
+       << " frame observations, " << segments.size()
        << (segments.size() == 1 ? " segment, " : " segments, ") << losses.size()
        << (losses.size() == 1 ? " tracking loss" : " tracking losses") << "; " << speed;
   char memory[64];

@@ -1,14 +1,16 @@
 #pragma once
 // FrontendResult: everything the front-end produces for one survey — the
 // sparse map, a record per frame (pose, statistics, time per step), the
-// tracking losses, the map segments and how they were linked — as written
-// to RUN/frontend/ (frontend_outputs.h, docs/SURVEY_FORMAT.md).
+// tracking losses, the map segments and how they were linked, and the 2D-3D
+// observations every posed frame's pose rests on — as written to
+// RUN/frontend/ (frontend_outputs.h, docs/SURVEY_FORMAT.md).
 //
 // Frames: F is the front-end's frame (that of the reference segment, up to
 // scale). A frame is "posed" when its T_F_C comes from vision in a segment
 // that is linked into F.
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -52,6 +54,25 @@ struct FrameRecord {
   StepTimesMs ms{};         // time per step
 };
 
+// One 2D-3D correspondence a posed frame's pose was computed from: landmark
+// `landmark` (an id of FrontendResult::map) measured at pixel (u, v) in
+// survey frame `frame` — distorted, as measured, like the keyframe
+// observations. For a frame posed by PnP these are the final inliers after
+// the motion-only refinement (PoseEstimate::inliers); for the two keyframes
+// that start a segment, the landmarks of the two-view start. They let a
+// later stage re-pose every frame against the refined landmarks (PnP +
+// motion-only refinement), not only the keyframes.
+//
+// float pixels: KLT measures in float, so nothing is lost, and each of the
+// ~3 million observations of a 100 m transect (6,200 frames, ~500 each)
+// takes 16 bytes.
+struct FrameObservation {
+  int frame = 0;      // survey frame index (FrameRecord::index)
+  int landmark = -1;  // landmark id in the map
+  float u = 0.0f;
+  float v = 0.0f;
+};
+
 struct TrackingLoss {
   int first_frame = 0;  // first frame not posed
   int last_frame = 0;   // last frame not posed
@@ -75,6 +96,13 @@ struct FrontendResult {
   std::vector<FrameRecord> frames;
   std::vector<TrackingLoss> losses;
   std::vector<SegmentRecord> segments;
+  // Of every posed frame, keyframes included; sorted by frame, then landmark,
+  // each pair once. Every landmark is a valid one of `map` (observations of
+  // landmarks the map later removed are dropped), so a frame may keep fewer
+  // than its FrameRecord::inliers.
+  std::vector<FrameObservation> frame_observations;
+  // The observations of survey frame `frame` (empty when it is not posed).
+  std::span<const FrameObservation> observationsOfFrame(int frame) const;
   StepTimesMs total_ms{};   // per step, over all frames
   double wall_time_s = 0.0;
   double frames_per_second = 0.0;           // frames / wall time, decoding included

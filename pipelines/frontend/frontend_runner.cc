@@ -108,13 +108,14 @@ std::vector<SegmentRecord> linkSegments(const Survey& survey, const FrameTracker
   return segments;
 }
 
-// The map of the linked segments, expressed in F, with dense new ids.
+// The map of the linked segments, expressed in F, with dense new ids
+// (keyframe_remap, landmark_remap: old id -> new id, -1 when dropped).
 VisualMap linkedMap(const VisualMap& source, const std::vector<SegmentRecord>& segments,
-                    std::vector<int>& keyframe_remap) {
+                    std::vector<int>& keyframe_remap, std::vector<int>& landmark_remap) {
   std::vector<Keyframe> keyframes;
   std::vector<Landmark> landmarks;
   keyframe_remap.assign(source.keyframes().size(), -1);
-  std::vector<int> landmark_remap(source.landmarks().size(), -1);
+  landmark_remap.assign(source.landmarks().size(), -1);
   for (const Landmark& l : source.landmarks()) {
     if (!l.valid || l.keyframe_ids.size() < 2) continue;
     const SegmentRecord& segment = segments[std::size_t(l.segment)];
@@ -147,6 +148,30 @@ VisualMap linkedMap(const VisualMap& source, const std::vector<SegmentRecord>& s
   VisualMap map;
   map.assign(std::move(keyframes), std::move(landmarks));
   return map;
+}
+
+// The tracker's frame observations of the frames still posed, in the ids of
+// the linked map; those of landmarks it no longer has (removed by bundle
+// adjustment, left with fewer than two keyframes, or of an unlinked segment)
+// are dropped. Filtered in place (the list is the front-end's largest); the
+// remap keeps the order of ids, so the list stays sorted.
+std::vector<FrameObservation> linkedFrameObservations(std::vector<FrameObservation> observations,
+                                                      const std::vector<int>& landmark_remap,
+                                                      const std::vector<FrameRecord>& frames) {
+  std::vector<bool> posed;
+  for (const FrameRecord& f : frames) {
+    if (f.index >= int(posed.size())) posed.resize(std::size_t(f.index) + 1, false);
+    posed[std::size_t(f.index)] = f.posed;
+  }
+  std::size_t kept = 0;
+  for (const FrameObservation& o : observations) {
+    if (o.frame >= int(posed.size()) || !posed[std::size_t(o.frame)]) continue;
+    const int l = landmark_remap[std::size_t(o.landmark)];
+    if (l < 0) continue;
+    observations[kept++] = {o.frame, l, o.u, o.v};
+  }
+  observations.resize(kept);
+  return observations;
 }
 
 }  // namespace
@@ -199,8 +224,8 @@ FrontendResult runFrontend(const Survey& survey, const FrontendOptions& options,
 
   // Link segments, then put every frame in F through its keyframe.
   result.segments = linkSegments(survey, tracker, options, result.warnings);
-  std::vector<int> keyframe_remap;
-  result.map = linkedMap(tracker.map(), result.segments, keyframe_remap);
+  std::vector<int> keyframe_remap, landmark_remap;
+  result.map = linkedMap(tracker.map(), result.segments, keyframe_remap, landmark_remap);
   std::map<int, std::string> reasons = tracker.lossReasons();
   result.frames = tracker.records();
   for (std::size_t i = 0; i < result.frames.size(); ++i) {
@@ -220,6 +245,8 @@ FrontendResult runFrontend(const Survey& survey, const FrontendOptions& options,
     const SE3d T_S_C = tracker.map().keyframe(anchor.keyframe_id).T_F_C * anchor.T_K_C;
     frame.T_F_C = segment.S_F_S.transformPose(T_S_C);
   }
+  result.frame_observations =
+      linkedFrameObservations(tracker.takeFrameObservations(), landmark_remap, result.frames);
   result.losses = collectLosses(result.frames, reasons);
   for (const auto& frame : result.frames) {
     for (int s = 0; s < kFrontendStepCount; ++s) result.total_ms[std::size_t(s)] += frame.ms[std::size_t(s)];

@@ -11,7 +11,9 @@
 // Frames are decoded on a second thread (frame_prefetcher.h) and tracked in
 // order (frame_tracker.h). Afterwards the segments are linked into F, the
 // frames' poses are re-expressed through their (bundle-adjusted) keyframes,
-// and the tracking losses are collected as frame ranges with their reasons.
+// their observations are mapped to the final landmark ids (those of removed
+// landmarks dropped), and the tracking losses are collected as frame ranges
+// with their reasons.
 //
 // Errors: std::invalid_argument for invalid options; std::runtime_error when
 // the video never initialises, naming the reference frames tried and why

@@ -1,10 +1,12 @@
 // The whole front-end on simulated surveys: every frame posed and the
 // trajectory's shape within 0.5 % of the path length after a Sim(3)
 // alignment; a run of black frames reported as one loss with its exact
-// frame range, and the frames after it posed in the same frame F.
+// frame range, and the frames after it posed in the same frame F; every
+// posed frame keeps the observations its pose rests on.
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -65,6 +67,73 @@ TEST(FrontendEndToEnd, TinySurveyEveryFramePosedWithinHalfAPercentOfThePath) {
   }
 }
 
+// The observations every posed frame's pose rests on (for the re-posing of
+// every frame after geo-referencing): sorted, none for a frame not posed, at
+// least the minimum inlier count per posed frame, only landmarks of the map,
+// and nearly all reprojecting through the frame's final T_F_C within the
+// inlier threshold of their pixel.
+void expectFrameObservationsFitTheirFrames(const FrontendResult& result, const Survey& survey,
+                                           const FrontendOptions& options) {
+  const PinholeRadtanCamera camera(survey.config.rgb.camera);
+  const double threshold_px = options.inlier_threshold_px * options.errorScale(camera.width());
+  for (std::size_t i = 1; i < result.frame_observations.size(); ++i) {
+    const FrameObservation& a = result.frame_observations[i - 1];
+    const FrameObservation& b = result.frame_observations[i];
+    ASSERT_TRUE(a.frame < b.frame || (a.frame == b.frame && a.landmark < b.landmark)) << "row " << i;
+  }
+  std::size_t counted = 0, close = 0;
+  int fewest = std::numeric_limits<int>::max();
+  for (const FrameRecord& f : result.frames) {
+    const auto observations = result.observationsOfFrame(f.index);
+    if (!f.posed) {
+      EXPECT_TRUE(observations.empty()) << "frame " << f.index;
+      continue;
+    }
+    fewest = std::min(fewest, int(observations.size()));
+    EXPECT_GE(int(observations.size()), options.min_pose_inliers) << "frame " << f.index;
+    EXPECT_LE(int(observations.size()), f.inliers) << "frame " << f.index;
+    const SE3d T_C_F = f.T_F_C.inverse();
+    for (const FrameObservation& o : observations) {
+      ASSERT_GE(o.landmark, 0);
+      ASSERT_LT(o.landmark, int(result.map.landmarks().size()));
+      const Landmark& l = result.map.landmark(o.landmark);
+      ASSERT_TRUE(l.valid) << "landmark " << o.landmark;
+      const Eigen::Vector3d p_C = T_C_F * l.p_F;
+      ++counted;
+      if (p_C.z() > 0.0 && (camera.project(p_C) - Eigen::Vector2d(o.u, o.v)).norm() <= threshold_px) ++close;
+    }
+  }
+  EXPECT_EQ(counted, result.frame_observations.size());  // none of a frame not posed
+  const double fraction = double(close) / double(std::max<std::size_t>(counted, 1));
+  std::cout << result.frame_observations.size() << " frame observations, fewest per posed frame " << fewest
+            << ", " << 100.0 * fraction << " % within " << threshold_px << " px\n";
+  EXPECT_GE(fraction, 0.95);
+}
+
+TEST(FrontendEndToEnd, TinySurveyEveryPosedFrameKeepsTheObservationsItsPoseRestsOn) {
+  const auto folder = testing::simulatedFrontendSurvey("tiny", *simulationPreset("tiny"));
+  const Survey survey = loadSurvey(folder);
+  // A tight BA outlier threshold, so that bundle adjustment removes landmarks
+  // (~2 %) that frames were posed from: their observations must be dropped
+  // and the others mapped to the ids of the final map (with the default, no
+  // landmark of `tiny` is removed and the ids happen to stay the same).
+  FrontendOptions options;
+  options.ba_outlier_px = 0.6;
+  const FrontendResult result = runFrontend(survey, options);
+  expectFrameObservationsFitTheirFrames(result, survey, options);
+
+  // The same after writing and reading RUN/frontend/.
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), result);
+  const FrontendResult read = readFrontendOutputs(run.path());
+  ASSERT_EQ(read.frame_observations.size(), result.frame_observations.size());
+  for (std::size_t i = 0; i < result.frame_observations.size(); ++i) {
+    const FrameObservation& a = result.frame_observations[i];
+    const FrameObservation& b = read.frame_observations[i];
+    ASSERT_TRUE(a.frame == b.frame && a.landmark == b.landmark && a.u == b.u && a.v == b.v) << "row " << i;
+  }
+}
+
 // A survey long enough for two segments, with an INS precise enough that
 // linking them is a test of the mechanism rather than of the INS.
 SimulationConfig blankableConfig() {
@@ -107,6 +176,8 @@ TEST(FrontendEndToEnd, BlackFramesAreOneReportedLossAndTheFramesAfterArePosedInT
   EXPECT_TRUE(result.segments[0].reference);
   EXPECT_TRUE(result.segments[1].linked);
   EXPECT_GT(result.segments[1].first_frame, last_black);
+  // The second segment's observations too, mapped into the linked map.
+  expectFrameObservationsFitTheirFrames(result, survey, FrontendOptions{});
 
   // Both sides of the gap in one frame: one Sim(3) fits them all.
   const auto truth = readTruthPoses(folder / "truth" / "rgb_poses.csv");

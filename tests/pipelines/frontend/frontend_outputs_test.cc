@@ -40,6 +40,12 @@ FrontendResult sampleResult() {
     for (int s = 0; s < kFrontendStepCount; ++s) f.ms[std::size_t(s)] = 0.125 * (s + 1) + i;
     result.frames.push_back(f);
   }
+  // Posed frames 0-9 and 20-24; landmarks 0, 1 and 3 (2 was removed). Pixels
+  // that a float holds but a short decimal does not (1/3, 0.1).
+  result.frame_observations = {{0, 0, 10.25f, 20.5f},           {0, 1, 100.0f, 200.0f},
+                               {3, 0, 1.0f / 3.0f, 639.999f},   {3, 3, 0.1f, 1e-5f},
+                               {7, 1, 101.0f, 202.0f},          {7, 3, 7.5f, 8.5f},
+                               {21, 1, 99.25f, 201.123456789f}};
   result.losses.push_back({10, 19, "no texture: dark (mean 0.0 DN, contrast 0.0 DN)"});
   SegmentRecord s0;
   s0.id = 0;
@@ -115,6 +121,15 @@ TEST(FrontendOutputs, RoundTripKeepsMapFramesLossesAndSegments) {
       EXPECT_EQ(a.T_F_C.q.coeffs(), b.T_F_C.q.coeffs());
     }
   }
+  ASSERT_EQ(read.frame_observations.size(), written.frame_observations.size());
+  for (std::size_t i = 0; i < written.frame_observations.size(); ++i) {
+    const FrameObservation& a = written.frame_observations[i];
+    const FrameObservation& b = read.frame_observations[i];
+    EXPECT_EQ(a.frame, b.frame) << i;
+    EXPECT_EQ(a.landmark, b.landmark) << i;
+    EXPECT_EQ(a.u, b.u) << i;  // bit-identical floats
+    EXPECT_EQ(a.v, b.v) << i;
+  }
   ASSERT_EQ(read.losses.size(), 1u);
   EXPECT_EQ(read.losses[0].first_frame, 10);
   EXPECT_EQ(read.losses[0].last_frame, 19);
@@ -128,6 +143,43 @@ TEST(FrontendOutputs, RoundTripKeepsMapFramesLossesAndSegments) {
   EXPECT_NEAR(read.segments[1].S_F_S.rotation().angularDistance(written.segments[1].S_F_S.rotation()), 0.0, 1e-12);
   EXPECT_EQ(read.segments[1].ins_rms_m, 0.0625);
   EXPECT_EQ(read.segments[1].note, "linked into F through the INS; scale 0.75");
+}
+
+TEST(FrontendOutputs, FrameObservationsAreWrittenInShortFloatForm) {
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), sampleResult());
+  EXPECT_EQ(testing::readText(run / "frontend" / "frame_observations.csv"),
+            "frame,landmark,u,v\n"
+            "0,0,10.25,20.5\n"
+            "0,1,100,200\n"
+            "3,0,0.33333334,639.999\n"
+            "3,3,0.1,1e-05\n"
+            "7,1,101,202\n"
+            "7,3,7.5,8.5\n"
+            "21,1,99.25,201.12346\n");
+}
+
+TEST(FrontendOutputs, ObservationsOfFrameAreThatFramesRows) {
+  const FrontendResult result = sampleResult();
+  const auto frame3 = result.observationsOfFrame(3);
+  ASSERT_EQ(frame3.size(), 2u);
+  EXPECT_EQ(frame3[0].landmark, 0);
+  EXPECT_EQ(frame3[1].landmark, 3);
+  EXPECT_EQ(result.observationsOfFrame(21).size(), 1u);
+  EXPECT_TRUE(result.observationsOfFrame(12).empty());
+  EXPECT_TRUE(result.observationsOfFrame(99).empty());
+}
+
+TEST(FrontendOutputs, ARunWithoutLossesOrFrameObservationsReadsBack) {
+  testing::TempFolder run;
+  FrontendResult written = sampleResult();
+  written.losses.clear();
+  written.frame_observations.clear();
+  writeFrontendOutputs(run.path(), written);
+  const FrontendResult read = readFrontendOutputs(run.path());
+  EXPECT_TRUE(read.losses.empty());
+  EXPECT_TRUE(read.frame_observations.empty());
+  EXPECT_EQ(read.frames.size(), written.frames.size());
 }
 
 TEST(FrontendOutputs, TumFileHoldsThePosedFramesInTumOrder) {
@@ -174,6 +226,80 @@ TEST(FrontendOutputs, ReaderNamesTheFileAndLineOfABadRow) {
     EXPECT_NE(std::string(error.what()).find("observations.csv:line 5"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("unknown landmark 9"), std::string::npos) << error.what();
   }
+}
+
+// The exact error of a bad frame_observations.csv row: file, line, detail.
+void expectFrameObservationError(const std::string& from, const std::string& to, const std::string& where,
+                                 const std::string& detail) {
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), sampleResult());
+  const auto file = run / "frontend" / "frame_observations.csv";
+  testing::replaceInFile(file, from, to);
+  try {
+    readFrontendOutputs(run.path());
+    ADD_FAILURE() << "expected an InputError for '" << to << "'";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.file(), file);
+    EXPECT_EQ(error.where(), where);
+    EXPECT_EQ(error.detail(), detail);
+  }
+}
+
+TEST(FrontendOutputs, FrameObservationOfAFrameNotPosedIsRejectedWithItsLine) {
+  expectFrameObservationError("\n21,1,", "\n12,1,", "line 8", "frame 12 is not a posed frame of frames.csv");
+  expectFrameObservationError("\n21,1,", "\n25,1,", "line 8", "frame 25 is not a posed frame of frames.csv");
+}
+
+TEST(FrontendOutputs, FrameObservationOfAnUnknownLandmarkIsRejectedWithItsLine) {
+  expectFrameObservationError("\n7,3,", "\n7,2,", "line 7", "unknown landmark 2");  // removed
+  expectFrameObservationError("\n7,3,", "\n7,4,", "line 7", "unknown landmark 4");  // never existed
+}
+
+TEST(FrontendOutputs, FrameObservationsOutOfOrderOrRepeatedAreRejectedWithTheirLine) {
+  expectFrameObservationError("\n3,3,", "\n3,0,", "line 5",
+                              "rows must be sorted by frame, then landmark, each pair once");
+  expectFrameObservationError("\n7,1,", "\n2,1,", "line 6",
+                              "rows must be sorted by frame, then landmark, each pair once");
+}
+
+TEST(FrontendOutputs, FrameObservationsFileFollowsTheCsvRules) {
+  expectFrameObservationError("\n7,1,", "\n\n7,1,", "line 6",
+                              "blank line inside the table; expected a row 'frame,landmark,u,v'");
+  expectFrameObservationError("7.5,8.5", "7.5,8.5,1", "line 7", "expected 4 columns (frame,landmark,u,v), got 5");
+  expectFrameObservationError("frame,landmark,u,v", "frame,landmark,v,u", "line 1",
+                              "expected the header 'frame,landmark,u,v', got 'frame,landmark,v,u'");
+  {
+    // CRLF line ends, blanks around cells and blank lines at the end are fine.
+    testing::TempFolder run;
+    writeFrontendOutputs(run.path(), sampleResult());
+    const auto file = run / "frontend" / "frame_observations.csv";
+    std::string text = testing::readText(file);
+    std::string crlf;
+    for (char c : text) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    testing::writeText(file, crlf + "\r\n  \r\n");
+    testing::replaceInFile(file, "7,3,7.5,8.5", " 7 , 3,\t7.5 ,8.5 ");
+    const FrontendResult read = readFrontendOutputs(run.path());
+    ASSERT_EQ(read.frame_observations.size(), 7u);
+    EXPECT_EQ(read.frame_observations[5].landmark, 3);
+    EXPECT_EQ(read.frame_observations[5].v, 8.5f);
+  }
+  {
+    testing::TempFolder run;
+    writeFrontendOutputs(run.path(), sampleResult());
+    testing::writeText(run / "frontend" / "frame_observations.csv", "\n");
+    try {
+      readFrontendOutputs(run.path());
+      ADD_FAILURE() << "expected an InputError";
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.where(), "line 1");
+      EXPECT_EQ(error.detail(), "empty file; expected the header 'frame,landmark,u,v'");
+    }
+  }
+}
+
+TEST(FrontendOutputs, FrameObservationPixelMustBeAFloatNumber) {
+  expectFrameObservationError("7.5,8.5", "7.5,abc", "line 7", "column 'v': expected a number, got 'abc'");
+  expectFrameObservationError("7.5,8.5", "1e39,8.5", "line 7", "column 'u': expected a pixel coordinate, got '1e39'");
 }
 
 }  // namespace
