@@ -1,82 +1,19 @@
 #include "core/survey/truth_files.h"
 
-#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "core/io/atomic_file.h"
 #include "core/survey/calibration_yaml.h"
-#include "core/survey/csv_table.h"
 #include "core/survey/number_text.h"
+#include "core/survey/pose_tables.h"
 #include "core/survey/strict_yaml_map.h"
 #include "core/util/input_error.h"
 #include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
-
-// Truth files are machine-written: a quaternion further than this from unit
-// norm is damage, not rounding (see the header).
-constexpr double kQuaternionNormTolerance = 1e-6;
-// A few ulps of 1: the squared norm of a normalised quaternion lies within it,
-// and such a quaternion is kept bit-exactly.
-constexpr double kUnitSquaredNormSlack = 1e-15;
-
-const std::vector<std::string> kPoseColumns = {"t", "x", "y", "z", "qw", "qx", "qy", "qz"};
-const std::vector<std::string> kLinePoseColumns = {"line", "t",  "x",  "y", "z",
-                                                   "qw",   "qx", "qy", "qz"};
-
-std::string quaternionNormProblem(const Eigen::Quaterniond& q) {
-  const double norm = q.norm();
-  if (std::abs(norm - 1.0) <= kQuaternionNormTolerance) return "";
-  return "expected a unit quaternion (norm within " + formatDouble(kQuaternionNormTolerance) +
-         " of 1), got norm " + formatDouble(norm);
-}
-
-// Reads t, x, y, z, qw, qx, qy, qz starting at column `first` of `row`.
-void readPose(const CsvTable& table, const CsvTable::Row& row, std::size_t first, double* t,
-              SE3d* pose) {
-  *t = table.number(row, first);
-  const Eigen::Vector3d translation(table.number(row, first + 1), table.number(row, first + 2),
-                                    table.number(row, first + 3));
-  Eigen::Quaterniond q(table.number(row, first + 4), table.number(row, first + 5),
-                       table.number(row, first + 6), table.number(row, first + 7));
-  const std::string problem = quaternionNormProblem(q);
-  if (!problem.empty()) {
-    throw InputError(table.file, InputError::atLine(row.line_number),
-                     "columns qw,qx,qy,qz: " + problem);
-  }
-  if (std::abs(q.squaredNorm() - 1.0) > kUnitSquaredNormSlack) q.normalize();
-  *pose = SE3d(q, translation);
-}
-
-// Appends ",x,y,z,qw,qx,qy,qz" of `pose` after its time, checking what the reader checks.
-void appendPose(std::string* text, const char* writer, double t, const SE3d& pose) {
-  const Eigen::Quaterniond& q = pose.q;
-  const double values[] = {t, pose.t.x(), pose.t.y(), pose.t.z(), q.w(), q.x(), q.y(), q.z()};
-  for (std::size_t i = 0; i < 8; ++i) {
-    if (!std::isfinite(values[i])) {
-      throw std::invalid_argument(std::string(writer) + ": non-finite value at time " +
-                                  formatDouble(t));
-    }
-    if (i > 0) *text += ',';
-    *text += formatDouble(values[i]);
-  }
-  const std::string problem = quaternionNormProblem(q);
-  if (!problem.empty()) {
-    throw std::invalid_argument(std::string(writer) + ": pose at time " + formatDouble(t) + ": " +
-                                problem);
-  }
-  *text += '\n';
-}
-
-void requireIncreasingTime(const char* writer, std::size_t index, double previous_t, double t) {
-  if (index > 0 && !(t > previous_t)) {
-    throw std::invalid_argument(std::string(writer) + ": times must be strictly increasing, got " +
-                                formatDouble(t) + " after " + formatDouble(previous_t));
-  }
-}
 
 void writeAtomically(const std::filesystem::path& file, const std::string& text) {
   AtomicFile out(file);
@@ -167,73 +104,37 @@ std::string emitTruthCalibration(const TruthCalibration& calibration) {
 
 }  // namespace
 
-// ---- rgb_poses.csv -----------------------------------------------------------
+// ---- rgb_poses.csv, uhi_poses.csv: the pose tables of pose_tables.h --------
 
 std::vector<TruthPose> readTruthPoses(const std::filesystem::path& file) {
-  const CsvTable table = readCsvTable(file, {kPoseColumns});
+  const std::vector<TimedPose> table = readTimedPoseTable(file);
   std::vector<TruthPose> poses;
-  poses.reserve(table.rows.size());
-  for (const auto& row : table.rows) {
-    TruthPose pose;
-    readPose(table, row, 0, &pose.t, &pose.T_W_X);
-    if (!poses.empty()) checkTimeOrder(table, row, 0, poses.back().t, pose.t);
-    poses.push_back(pose);
-  }
+  poses.reserve(table.size());
+  for (const TimedPose& pose : table) poses.push_back({pose.t, pose.T});
   return poses;
 }
 
 void writeTruthPoses(const std::filesystem::path& file, const std::vector<TruthPose>& poses) {
-  const char* writer = "writeTruthPoses";
-  if (poses.empty()) throw std::invalid_argument("writeTruthPoses: expected at least one pose");
-  std::string text = "t,x,y,z,qw,qx,qy,qz\n";
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    requireIncreasingTime(writer, i, i > 0 ? poses[i - 1].t : 0.0, poses[i].t);
-    appendPose(&text, writer, poses[i].t, poses[i].T_W_X);
-  }
-  writeAtomically(file, text);
+  std::vector<TimedPose> table;
+  table.reserve(poses.size());
+  for (const TruthPose& pose : poses) table.push_back({pose.t, pose.T_W_X});
+  writeTimedPoseTable(file, table, "writeTruthPoses");
 }
 
-// ---- uhi_poses.csv -----------------------------------------------------------
-
 std::vector<TruthLinePose> readTruthLinePoses(const std::filesystem::path& file) {
-  const CsvTable table = readCsvTable(file, {kLinePoseColumns});
+  const std::vector<LinePose> table = readLinePoseTable(file);
   std::vector<TruthLinePose> poses;
-  poses.reserve(table.rows.size());
-  for (const auto& row : table.rows) {
-    TruthLinePose pose;
-    const long long expected = static_cast<long long>(poses.size());
-    pose.line = table.integer(row, 0);
-    if (pose.line != expected) {
-      throw InputError(file, InputError::atLine(row.line_number),
-                       "column 'line': expected scan line " + std::to_string(expected) +
-                           " (one row per scan line, counting from 0 in order), got " +
-                           std::to_string(pose.line));
-    }
-    readPose(table, row, 1, &pose.t, &pose.T_W_U);
-    if (!poses.empty()) checkTimeOrder(table, row, 1, poses.back().t, pose.t);
-    poses.push_back(pose);
-  }
+  poses.reserve(table.size());
+  for (const LinePose& pose : table) poses.push_back({pose.line, pose.t, pose.T});
   return poses;
 }
 
 void writeTruthLinePoses(const std::filesystem::path& file,
                          const std::vector<TruthLinePose>& poses) {
-  const char* writer = "writeTruthLinePoses";
-  if (poses.empty()) {
-    throw std::invalid_argument("writeTruthLinePoses: expected at least one scan line");
-  }
-  std::string text = "line,t,x,y,z,qw,qx,qy,qz\n";
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    if (poses[i].line != static_cast<long long>(i)) {
-      throw std::invalid_argument("writeTruthLinePoses: expected scan line " + std::to_string(i) +
-                                  " at position " + std::to_string(i) + ", got " +
-                                  std::to_string(poses[i].line));
-    }
-    requireIncreasingTime(writer, i, i > 0 ? poses[i - 1].t : 0.0, poses[i].t);
-    text += std::to_string(poses[i].line) + ',';
-    appendPose(&text, writer, poses[i].t, poses[i].T_W_U);
-  }
-  writeAtomically(file, text);
+  std::vector<LinePose> table;
+  table.reserve(poses.size());
+  for (const TruthLinePose& pose : poses) table.push_back({pose.line, pose.t, pose.T_W_U});
+  writeLinePoseTable(file, table, "writeTruthLinePoses");
 }
 
 // ---- calibration.yaml --------------------------------------------------------

@@ -7,14 +7,12 @@
 //                                                      true time (recorded time + d)
 //   truth/calibration.yaml  format: hsmap-truth/1 (below)
 //
-// CSV rules are those of csv_table.h (exact header, cell count, finite
-// numbers, strictly increasing t; errors name the file and line), plus:
-//   - the quaternion (qw, qx, qy, qz) is Hamilton and must have a norm within
-//     1e-6 of 1. Truth is written by a program, so a larger deviation means a
-//     damaged file or columns in the wrong order, not hand-typed digits. A
-//     quaternion that is unit to double precision is kept bit-exactly (so
-//     write -> read is an identity); one off by more is normalised;
-//   - uhi_poses.csv numbers its rows 0, 1, 2, ... like uhi/lines.csv.
+// The two CSV files are the pose tables of pose_tables.h (the same reader and
+// writer as a run's trajectory/ files): exact header, cell count, finite
+// numbers, strictly increasing t, unit quaternions (norm within 1e-6),
+// uhi_poses.csv numbering its rows 0, 1, 2, ... like uhi/lines.csv; errors
+// name the file and line. TruthPose / TruthLinePose keep their own field names
+// (T_W_X, T_W_U) for the code that reads truth.
 //
 // calibration.yaml (strict_yaml_map.h rules: unknown, duplicated or missing
 // keys are errors naming the line and key):
@@ -42,6 +40,7 @@
 
 #include "core/geometry/camera_parameters.h"
 #include "core/geometry/se3.h"
+#include "core/survey/pose_tables.h"
 #include "core/survey/survey_config.h"
 
 namespace hsmap {

@@ -196,7 +196,7 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
   EXPECT_NE(run.out.find("front-end: " + frames + " of " + frames + " frames posed"),
             std::string::npos)
       << run.out;
-  for (const char* expected : {"frontend: ", "frames/s", "stages: load ", "peak memory"}) {
+  for (const char* expected : {"frontend: ", "frames/s", "stage times and peak memory", "total "}) {
     EXPECT_NE(run.out.find(expected), std::string::npos) << "missing '" << expected << "' in\n"
                                                          << run.out;
   }
@@ -212,13 +212,13 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
   const RunResult again = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                               quoted(run_folder.string()));
   EXPECT_EQ(again.exit_status, 1);
-  EXPECT_EQ(again.err, "error: " + (run_folder / "frontend").string() +
-                           " exists from an earlier run; pass --force to replace that stage's "
-                           "outputs\n");
+  EXPECT_EQ(again.err, "error: " + (run_folder / "run.yaml").string() +
+                           " exists from an earlier run; pass --force to replace it\n");
   const RunResult unknown = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                                 quoted(run_folder.string()) + " --until mesh");
   EXPECT_EQ(unknown.exit_status, 1);
-  EXPECT_EQ(unknown.err, "error: unknown stage 'mesh' for --until; expected one of frontend\n");
+  EXPECT_EQ(unknown.err,
+            "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

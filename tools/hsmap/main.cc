@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/util/input_error.h"
+#include "tools/hsmap/evaluate_command.h"
 #include "tools/hsmap/inspect_command.h"
 #include "tools/hsmap/run_command.h"
 #include "tools/hsmap/sample_command.h"
@@ -36,6 +37,8 @@ int main(int argc, char** argv) {
   CLI::App* run = hsmap::addRunCommand(app, run_options);
   hsmap::SimulateOptions simulate_options;
   CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);
+  hsmap::EvaluateOptions evaluate_options;
+  CLI::App* evaluate = hsmap::addEvaluateCommand(app, evaluate_options);
 
   try {
     app.parse(argc, argv);
@@ -47,6 +50,7 @@ int main(int argc, char** argv) {
   try {
     if (inspect->parsed()) return hsmap::runInspectCommand(inspect_options, std::cout);
     if (run->parsed()) return hsmap::runRunCommand(run_options, std::cout, std::cerr);
+    if (evaluate->parsed()) return hsmap::runEvaluateCommand(evaluate_options, std::cout);
     if (sample->parsed()) return hsmap::runSampleCommand(sample_options, std::cout, std::cerr);
     if (simulate->parsed()) {
       return hsmap::runSimulateCommand(simulate_options, std::cout, std::cerr);

@@ -3,54 +3,110 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <ostream>
 
+#include "core/io/results_folder.h"
+#include "core/survey/run_record.h"
+#include "core/util/input_error.h"
 #include "core/survey/survey.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/frontend/frontend_outputs.h"
 #include "pipelines/frontend/frontend_runner.h"
+#include "pipelines/georef/georef_outputs.h"
+#include "pipelines/georef/planar_georef.h"
+#include "pipelines/georef/sequential_georef.h"
 
 namespace hsmap {
 namespace {
 
-// The stages in the order they run; `--until` takes one of these.
-const std::vector<std::string>& stageNames() {
-  static const std::vector<std::string> names = {"frontend"};
+namespace fs = std::filesystem;
+
+// The stages each variant runs, in order.
+const std::vector<std::string>& variantStages(const std::string& variant) {
+  static const std::vector<std::string> sequential = {"frontend", "georef"};
+  static const std::vector<std::string> planar = {"georef"};
+  return variant == "planar" ? planar : sequential;
+}
+
+const std::vector<std::string>& supportedVariants() {
+  static const std::vector<std::string> names = {"sequential", "planar"};
   return names;
 }
 
-std::string stageList() {
+std::string joined(const std::vector<std::string>& names) {
   std::string text;
-  for (const auto& name : stageNames()) text += (text.empty() ? "" : ", ") + name;
+  for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
   return text;
 }
 
-// A stage's outputs may be replaced only on purpose.
-bool stageFolderUsable(const std::filesystem::path& folder, bool force, std::ostream& err) {
-  std::error_code error;
-  if (!std::filesystem::exists(folder, error) || force) return true;
-  err << "error: " << folder.string()
-      << " exists from an earlier run; pass --force to replace that stage's outputs\n";
-  return false;
+int indexOf(const std::vector<std::string>& names, const std::string& name) {
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == name) return int(i);
+  }
+  return -1;
 }
 
-void runFrontendStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
+// What a stage writes, relative to RUN (removed first under --force).
+std::vector<fs::path> stageProducts(const std::string& stage) {
+  if (stage == "frontend") return {"frontend"};
+  return {"trajectory", "calibration.yaml", "map/sparse.ply", "georef"};
+}
+
+std::string secondsText(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f s", seconds);
+  return text;
+}
+
+std::string megabytesText(double mb) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.0f MiB", mb);
+  return text;
+}
+
+FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
   FrontendOptions frontend_options;
   Progress progress("frontend", survey.rgb.frameCount(), "frames", out);
   int reported = 0;
-  const FrontendResult result =
-      runFrontend(survey, frontend_options, [&](int done, int, double) {
-        progress.advance(done - reported);
-        reported = done;
-      });
+  FrontendResult result = runFrontend(survey, frontend_options, [&](int done, int, double) {
+    progress.advance(done - reported);
+    reported = done;
+  });
   progress.finish();
   writeFrontendOutputs(options.out, result);
   out << result.summary() << "\n";
   for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
-  out << "wrote " << (options.out / "frontend").string()
-      << "/ (keyframes, observations, landmarks, frames, frame_stats, losses, segments, "
-         "frames.tum)\n";
+  out << "wrote " << (options.out / frontend_files::folder).string() << "/\n";
+  return result;
+}
+
+void runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
+                    const RunOptions& options, std::ostream& out) {
+  GeorefOptions georef_options;
+  GeorefResult result;
+  if (options.variant == "planar") {
+    result = runPlanarGeoref(survey, georef_options);
+  } else {
+    std::optional<Progress> frames;
+    result = runSequentialGeoref(survey, *frontend, georef_options,
+                                 [&](const std::string& step, int done, int total) {
+                                   if (step != "frames") {
+                                     if (done == 0) out << "georef: " << step << "...\n";
+                                     return;
+                                   }
+                                   if (!frames) frames.emplace("georef: posing frames", total, "frames", out);
+                                   frames->advance(done - frames->done());
+                                 });
+    if (frames) frames->finish();
+  }
+  writeGeorefOutputs(options.out, result);
+  out << result.summary() << "\n";
+  for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
+  out << "wrote";
+  for (const auto& path : georefProductPaths(result)) out << " " << path.string();
+  out << " in " << options.out.string() << "\n";
 }
 
 }  // namespace
@@ -59,62 +115,134 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
   CLI::App* command =
       app.add_subcommand("run", "Run the processing stages on a survey into a run folder");
   command->footer(
-      "Stages, in order: " + stageList() +
-      " (geo-referencing, surface, joint estimation and the hyperspectral products follow in "
-      "later versions). Each stage writes its files into RUN under a temporary name and renames "
-      "them when complete; the files are described in docs/SURVEY_FORMAT.md.\n"
+      "Variants and their stages: sequential = frontend, georef; planar = georef (the INS "
+      "alone). Surface, joint estimation and the hyperspectral products follow in later "
+      "versions. Each stage writes its files into RUN under temporary names and moves them "
+      "into place when complete; run.yaml is written last. The files are described in "
+      "docs/SURVEY_FORMAT.md.\n"
       "Exit status: 0 on success; 2 when the survey is invalid (one line naming the file and "
       "the line or key); 1 on other failures.");
   command->add_option("SURVEY", options.survey, "Survey folder (the folder holding survey.yaml)")
       ->required();
   command->add_option("--out", options.out, "Run folder to write into (created if absent)")
       ->required();
-  command->add_option("--until", options.until, "Last stage to run: " + stageList())
-      ->default_val(options.until);
+  command->add_option("--variant", options.variant,
+                      "Estimation variant: " + joined(supportedVariants()))
+      ->default_val(options.variant);
+  command->add_option("--until", options.until,
+                      "Last stage to run (default: the variant's last)");
+  command->add_option("--from", options.from,
+                      "First stage to run; earlier stages' files are read from RUN");
   command->add_flag("--force", options.force,
-                    "Replace the outputs of stages that an earlier run left in RUN");
+                    "Replace the outputs that an earlier run left in RUN");
   return command;
 }
 
 int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  bool known = false;
-  for (const auto& name : stageNames()) known = known || name == options.until;
-  if (!known) {
-    err << "error: unknown stage '" << options.until << "' for --until; expected one of "
-        << stageList() << "\n";
+  if (indexOf(supportedVariants(), options.variant) < 0) {
+    err << "error: unknown variant '" << options.variant << "' for --variant; expected one of "
+        << joined(supportedVariants()) << "\n";
+    return 1;
+  }
+  const std::vector<std::string>& stages = variantStages(options.variant);
+  const int last = options.until.empty() ? int(stages.size()) - 1 : indexOf(stages, options.until);
+  const int first = options.from.empty() ? 0 : indexOf(stages, options.from);
+  for (const auto& [flag, name, index] : {std::tuple{"--until", options.until, last},
+                                          std::tuple{"--from", options.from, first}}) {
+    if (index < 0) {
+      err << "error: unknown stage '" << name << "' for " << flag << "; the " << options.variant
+          << " variant runs " << joined(stages) << "\n";
+      return 1;
+    }
+  }
+  if (first > last) {
+    err << "error: --from " << stages[std::size_t(first)] << " comes after --until "
+        << stages[std::size_t(last)] << "\n";
     return 1;
   }
   std::error_code error;
-  if (std::filesystem::exists(options.out, error) &&
-      !std::filesystem::is_directory(options.out, error)) {
+  if (fs::exists(options.out, error) && !fs::is_directory(options.out, error)) {
     err << "error: " << options.out.string() << " exists and is not a folder\n";
     return 1;
   }
-  if (!stageFolderUsable(options.out / "frontend", options.force, err)) return 1;
-  std::filesystem::create_directories(options.out);
+  // Products an earlier run left: replaced only on purpose.
+  std::vector<fs::path> replaced = {results_paths::run_yaml, results_paths::metrics_json};
+  for (int s = first; s <= last; ++s) {
+    for (const auto& path : stageProducts(stages[std::size_t(s)])) replaced.push_back(path);
+  }
+  for (const auto& path : replaced) {
+    if (!fs::exists(options.out / path, error)) continue;
+    if (!options.force) {
+      err << "error: " << (options.out / path).string()
+          << " exists from an earlier run; pass --force to replace it\n";
+      return 1;
+    }
+  }
+  for (const auto& path : replaced) fs::remove_all(options.out / path, error);
+  fs::create_directories(options.out);
+
+  RunRecord record;
+  record.program_version = HSMAP_VERSION;
+  record.variant = options.variant;
+  record.survey = fs::absolute(options.survey).lexically_normal();
+  record.started_utc = formatUtcTimestamp(std::chrono::system_clock::now());
+  record.options["until"] = stages[std::size_t(last)];
+  record.options["from"] = stages[std::size_t(first)];
 
   StageTimings timings;
-  auto load_stage = timings.stage("load");
+  auto finishStage = [&](const std::string& name, double seconds) {
+    record.stages.push_back({name, seconds, peakResidentMemoryMb()});
+  };
+  const auto started = std::chrono::steady_clock::now();
+  auto since = [](std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  auto stage_start = std::chrono::steady_clock::now();
   const Survey survey = loadSurvey(options.survey);
-  load_stage.stop();
+  finishStage("load", since(stage_start));
   out << "survey '" << survey.config.name << "': " << survey.rgb.frameCount() << " RGB frames, "
-      << survey.line_times.size() << " scan lines, " << survey.ins.fixes.size() << " INS fixes\n";
+      << survey.line_times.size() << " scan lines, " << survey.ins.fixes.size() << " INS fixes ("
+      << (survey.ins.has_attitude ? "with" : "without") << " attitude)\n";
   for (const auto& warning : survey.warnings) out << "warning: " << warning << "\n";
 
-  {
-    auto frontend_stage = timings.stage("frontend");
-    runFrontendStage(survey, options, out);
+  std::optional<FrontendResult> frontend;
+  for (int s = first; s <= last; ++s) {
+    const std::string& stage = stages[std::size_t(s)];
+    stage_start = std::chrono::steady_clock::now();
+    try {
+      if (stage == "frontend") {
+        frontend = runFrontendStage(survey, options, out);
+      } else if (stage == "georef") {
+        if (options.variant != "planar" && !frontend) {
+          out << "georef: reading the front-end's files from "
+              << (options.out / frontend_files::folder).string() << "\n";
+          frontend = readFrontendOutputs(options.out);
+        }
+        runGeorefStage(survey, frontend, options, out);
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& failure) {
+      err << "error: stage " << stage << " failed: " << failure.what() << "\n";
+      return 1;
+    }
+    finishStage(stage, since(stage_start));
   }
-  out << "stages:";
-  for (const auto& [name, seconds] : timings.seconds()) {
-    char text[64];
-    std::snprintf(text, sizeof(text), " %s %.1f s,", name.c_str(), seconds);
-    out << text;
+  record.total_time_s = since(started);
+  record.peak_rss_mb = peakResidentMemoryMb();
+  writeRunRecord(options.out / results_paths::run_yaml, record);
+
+  out << "stage times and peak memory (of the process when the stage ended):\n";
+  for (const auto& stage : record.stages) {
+    char line[128];
+    std::snprintf(line, sizeof(line), "  %-10s %10s %10s\n", stage.name.c_str(),
+                  secondsText(stage.time_s).c_str(), megabytesText(stage.peak_rss_mb).c_str());
+    out << line;
   }
-  char total[96];
-  std::snprintf(total, sizeof(total), " total %.1f s; peak memory %.0f MiB\n", timings.total(),
-                peakResidentMemoryMb());
-  out << total;
+  out << "total " << secondsText(record.total_time_s) << ", peak memory "
+      << megabytesText(record.peak_rss_mb) << "; the run is in " << options.out.string()
+      << " (run.yaml written)\n";
   return 0;
 }
 

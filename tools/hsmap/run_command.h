@@ -1,10 +1,19 @@
 #pragma once
-// `hsmap run SURVEY --out RUN [--until STAGE]`: the stages of a run, in
-// order, each writing its files into the run folder (docs/SURVEY_FORMAT.md).
-// The stages in place so far: frontend (the monocular visual front-end,
-// docs/FRONTEND.md). Geo-referencing, surface, joint estimation and the
-// hyperspectral products follow as they land; --until names the last stage
-// to run.
+// `hsmap run SURVEY --out RUN [--variant V] [--until STAGE] [--from STAGE]`:
+// the stages of a run, in order, each writing its products into the run
+// folder (the data contract's results folder; docs/SURVEY_FORMAT.md):
+//
+//   variant      stages
+//   sequential   frontend (docs/FRONTEND.md), georef (docs/GEOREF.md)
+//   planar       georef (the INS alone: no vision)
+//
+// --until names the last stage to run; --from the first (the earlier
+// stages' files are read back from RUN, e.g. to rerun geo-referencing on a
+// front-end already computed). run.yaml is written last, when every stage
+// asked for has succeeded: a folder without it holds no finished run. With
+// --force, an earlier run's run.yaml, metrics.json and the products of the
+// stages about to run are removed first, so a run that fails never leaves
+// an older product looking like its own.
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -18,7 +27,9 @@ namespace hsmap {
 struct RunOptions {
   std::filesystem::path survey;
   std::filesystem::path out;
-  std::string until = "frontend";
+  std::string variant = "sequential";
+  std::string until;  // empty: the variant's last stage
+  std::string from;   // empty: the variant's first stage
   bool force = false;
 };
 

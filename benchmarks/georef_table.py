@@ -1,0 +1,34 @@
+#!/usr/bin/python3
+"""One Markdown table of trajectory metrics from metrics.json files.
+
+    georef_table.py NAME=RUN/metrics.json ...
+
+Rows in the order given; columns: variant, the absolute frame error
+(rgb_ate_m) beside the INS floor, the shape (rgb_ate_aligned_m), the scale
+error beside the INS floor, and the scan lines' errors after the frames'
+alignment. Used by benchmarks/georef_benchmark.sh.
+"""
+import json
+import sys
+
+
+def cell(value, scale=1.0, digits=1, unit=""):
+    if value is None:
+        return "n/a"
+    return f"{value * scale:.{digits}f}{unit}"
+
+
+print("| survey | variant | rgb_ate_m | INS floor | rgb_ate_aligned_m | rgb_scale_error | INS floor | "
+      "uhi_position_rmse_m | uhi_rotation_rmse_deg |")
+print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+for argument in sys.argv[1:]:
+    name, path = argument.split("=", 1)
+    with open(path) as f:
+        m = json.load(f)
+    print(f"| {name} | {m['variant']} | {cell(m['rgb_ate_m'], 100, 1, ' cm')} | "
+          f"{cell(m.get('ins_floor_rgb_ate_m'), 100, 1, ' cm')} | "
+          f"{cell(m['rgb_ate_aligned_m'], 1000, 1, ' mm')} | "
+          f"{cell(m['rgb_scale_error'], 100, 2, ' %')} | "
+          f"{cell(m.get('ins_floor_scale_error'), 100, 2, ' %')} | "
+          f"{cell(m['uhi_position_rmse_m'], 1000, 1, ' mm')} | "
+          f"{cell(m['uhi_rotation_rmse_deg'], 1, 2, '°')} |")

@@ -1,0 +1,121 @@
+#include "core/survey/run_calibration.h"
+
+#include <stdexcept>
+
+#include "core/io/atomic_file.h"
+#include "core/survey/calibration_yaml.h"
+#include "core/survey/results_yaml.h"
+#include "core/survey/strict_yaml_map.h"
+#include "core/util/input_error.h"
+#include "core/util/message_text.h"
+
+namespace hsmap {
+namespace {
+
+// Same bound as survey.yaml's guess (survey_config.h): an hour either way.
+constexpr double kMaxTimeOffsetS = 3600.0;
+
+RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node& document) {
+  if (document.IsNull()) {
+    throw InputError(file, InputError::atLine(1),
+                     std::string("empty file; expected a YAML map starting with 'format: ") +
+                         RunCalibration::kFormat + "'");
+  }
+  const StrictYamlMap root(file, document, "", 1,
+                           {"format", "variant", "T_C_U", "time_offset_s", "time_offset_sigma_s",
+                            "warnings"});
+  const std::string format = root.text("format");
+  if (format != RunCalibration::kFormat) {
+    root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
+                            RunCalibration::kFormat + "'");
+  }
+  RunCalibration calibration;
+  calibration.variant = readRunVariant(root, "variant");
+  const StrictYamlMap extrinsic = root.map(
+      "T_C_U", {"rotation_wxyz", "translation_m", "sigma_rotation_deg", "sigma_translation_m"});
+  calibration.T_C_U = readRigidTransform(extrinsic);
+  const YAML::Node extrinsic_node = document["T_C_U"];
+  calibration.sigma_rotation_deg =
+      readNullableSigmas(extrinsic, extrinsic_node["sigma_rotation_deg"], "sigma_rotation_deg");
+  calibration.sigma_translation_m =
+      readNullableSigmas(extrinsic, extrinsic_node["sigma_translation_m"], "sigma_translation_m");
+  calibration.time_offset_s =
+      root.numberInRange("time_offset_s", -kMaxTimeOffsetS, kMaxTimeOffsetS);
+  calibration.time_offset_sigma_s =
+      readNullableSigma(root, document["time_offset_sigma_s"], "time_offset_sigma_s");
+  calibration.warnings = readTextList(root, document["warnings"], "warnings");
+  return calibration;
+}
+
+void emitSigmas(YAML::Emitter& out, const std::optional<Eigen::Vector3d>& sigmas) {
+  if (!sigmas) {
+    out << YAML::Null;
+    return;
+  }
+  out << YAML::Flow << YAML::BeginSeq;
+  for (int i = 0; i < 3; ++i) emitNumber(out, (*sigmas)[i]);
+  out << YAML::EndSeq;
+}
+
+std::string emitDocument(const RunCalibration& calibration) {
+  YAML::Emitter out;
+  out.SetNullFormat(YAML::LowerNull);  // `null`, as the contract writes it (not `~`)
+  out << YAML::Comment("hsmap run calibration (format: see docs/EVALUATE.md)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "format" << YAML::Value << RunCalibration::kFormat;
+  out << YAML::Key << "variant" << YAML::Value << calibration.variant;
+  out << YAML::Key << "T_C_U" << YAML::Value << YAML::BeginMap;
+  emitRigidTransformKeys(out, calibration.T_C_U);
+  out << YAML::Key << "sigma_rotation_deg" << YAML::Value;
+  emitSigmas(out, calibration.sigma_rotation_deg);
+  out << YAML::Key << "sigma_translation_m" << YAML::Value;
+  emitSigmas(out, calibration.sigma_translation_m);
+  out << YAML::EndMap;
+  out << YAML::Key << "time_offset_s" << YAML::Value;
+  emitNumber(out, calibration.time_offset_s);
+  out << YAML::Key << "time_offset_sigma_s" << YAML::Value;
+  if (calibration.time_offset_sigma_s) {
+    emitNumber(out, *calibration.time_offset_sigma_s);
+  } else {
+    out << YAML::Null;
+  }
+  out << YAML::Key << "warnings" << YAML::Value;
+  if (calibration.warnings.empty()) {
+    out << YAML::Flow;  // `warnings: []`
+  }
+  out << YAML::BeginSeq;
+  for (const std::string& warning : calibration.warnings) out << YAML::DoubleQuoted << warning;
+  out << YAML::EndSeq;
+  out << YAML::EndMap;
+  if (!out.good()) {
+    throw std::logic_error("writeRunCalibration: YAML emitter: " + out.GetLastError());
+  }
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace
+
+RunCalibration parseRunCalibration(std::string_view text, const std::filesystem::path& file) {
+  return parseDocument(file, parseYamlText(text, file));
+}
+
+RunCalibration readRunCalibration(const std::filesystem::path& file) {
+  return parseDocument(file, loadYamlFile(file));
+}
+
+void writeRunCalibration(const std::filesystem::path& file, const RunCalibration& calibration) {
+  const std::string text = emitDocument(calibration);
+  // The reader's checks on the text before it reaches the disk: hsmap never
+  // writes a calibration.yaml that it would itself refuse.
+  try {
+    parseRunCalibration(text, file);
+  } catch (const InputError& e) {
+    throw std::invalid_argument(std::string("writeRunCalibration: invalid calibration: ") +
+                                e.what());
+  }
+  AtomicFile out(file);
+  out.stream() << text;
+  out.commit();
+}
+
+}  // namespace hsmap

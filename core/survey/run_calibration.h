@@ -1,0 +1,55 @@
+#pragma once
+// RUN/calibration.yaml: a run's estimate of the RGB-UHI extrinsic T_C_U and
+// of the UHI time offset d, with their 1-sigma (docs/EVALUATE.md):
+//
+//   format: hsmap-calibration/1
+//   variant: joint                       stacked | planar | sequential | joint
+//   T_C_U:
+//     rotation_wxyz: [w, x, y, z]
+//     translation_m: [x, y, z]           each in [-100, 100]
+//     sigma_rotation_deg: [sx, sy, sz]   1-sigma of the rotation error about U's axes, or null
+//     sigma_translation_m: [sx, sy, sz]  or null
+//   time_offset_s: 0.0148                d: true UHI time = recorded time + d, in [-3600, 3600]
+//   time_offset_sigma_s: 0.0004          or null
+//   warnings: []                         texts, e.g. a component the survey cannot determine
+//
+// A sigma that was not estimated is `null`; every key is required (a sigma
+// may be null, not absent), so a truncated file is never read as "not
+// estimated". Sigmas are finite and >= 0. Rotations follow survey_config.h
+// (norm within 1e-3 of 1, normalised; one unit to double precision is kept
+// bit-exactly). Reading is strict (strict_yaml_map.h): unknown, duplicated
+// or missing keys are InputError naming the file, line and key, e.g.
+//   "RUN/calibration.yaml:line 7, key T_C_U.sigma_translation_m: expected a
+//    list of 3 numbers >= 0 or null (not estimated), got 'abc'".
+// Writing is atomic, numbers in shortest round-trip form, and runs the
+// reader's checks first: std::invalid_argument for a calibration the reader
+// would refuse.
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/survey/survey_config.h"
+
+namespace hsmap {
+
+struct RunCalibration {
+  static constexpr const char* kFormat = "hsmap-calibration/1";
+  std::string variant;          // one of runVariants() (run_variants.h)
+  RigidTransformConfig T_C_U;   // U in the RGB camera frame C
+  std::optional<Eigen::Vector3d> sigma_rotation_deg;   // about U's x, y, z; nullopt: not estimated
+  std::optional<Eigen::Vector3d> sigma_translation_m;  // along C's x, y, z
+  double time_offset_s = 0.0;                          // d
+  std::optional<double> time_offset_sigma_s;
+  std::vector<std::string> warnings;
+};
+
+RunCalibration readRunCalibration(const std::filesystem::path& file);
+// The same on the file's content `text`; `file` names it in errors.
+RunCalibration parseRunCalibration(std::string_view text, const std::filesystem::path& file);
+void writeRunCalibration(const std::filesystem::path& file, const RunCalibration& calibration);
+
+}  // namespace hsmap

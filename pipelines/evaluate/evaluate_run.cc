@@ -1,0 +1,81 @@
+#include "pipelines/evaluate/evaluate_run.h"
+
+#include "core/io/atomic_file.h"
+#include "core/io/results_folder.h"
+#include "pipelines/evaluate/calibration_metrics.h"
+#include "pipelines/evaluate/ins_floor.h"
+#include "pipelines/evaluate/trajectory_metrics.h"
+
+namespace hsmap {
+namespace {
+
+// Why the surface and products metrics are null today (the stages that make
+// the mesh and the ortho-image are not in place yet).
+constexpr const char* kNoMeshMetrics = "not measured yet: hsmap has no surface stage";
+constexpr const char* kNoOrthoMetrics = "not measured yet: hsmap has no products stage";
+
+}  // namespace
+
+EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
+  EvaluationMetrics metrics;
+  metrics.variant = inputs.run.variant;
+
+  std::vector<TimedPose> frames_true;
+  for (const TruthPose& pose : inputs.truth.rgb_poses) frames_true.push_back({pose.t, pose.T_W_X});
+  std::vector<LinePose> lines_true;
+  for (const TruthLinePose& pose : inputs.truth.uhi_poses) {
+    lines_true.push_back({pose.line, pose.t, pose.T_W_U});
+  }
+  const TrajectoryMetrics trajectory =
+      computeTrajectoryMetrics(inputs.frames, frames_true, inputs.lines, lines_true);
+  metrics.rgb_ate_m = trajectory.rgb_ate_m;
+  metrics.rgb_ate_aligned_m = trajectory.rgb_ate_aligned_m;
+  metrics.rgb_scale_error = trajectory.rgb_scale_error;
+  metrics.uhi_position_rmse_m = trajectory.uhi_position_rmse_m;
+  metrics.uhi_rotation_rmse_deg = trajectory.uhi_rotation_rmse_deg;
+
+  const CalibrationErrors calibration =
+      compareCalibration(inputs.calibration, inputs.truth.calibration);
+  metrics.extrinsic_rotation_error_deg = MetricValue::of(calibration.extrinsic_rotation_error_deg);
+  metrics.extrinsic_translation_error_m =
+      MetricValue::of(calibration.extrinsic_translation_error_m);
+  metrics.time_offset_error_s = MetricValue::of(calibration.time_offset_error_s);
+
+  for (MetricValue EvaluationMetrics::*mesh :
+       {&EvaluationMetrics::mesh_accuracy_m, &EvaluationMetrics::mesh_completeness}) {
+    metrics.*mesh = MetricValue::missing(kNoMeshMetrics);
+  }
+  for (MetricValue EvaluationMetrics::*ortho :
+       {&EvaluationMetrics::ortho_mean_shift_m, &EvaluationMetrics::ortho_registration_rmse_m,
+        &EvaluationMetrics::ortho_scale_error, &EvaluationMetrics::ortho_sam_deg,
+        &EvaluationMetrics::ortho_coverage}) {
+    metrics.*ortho = MetricValue::missing(kNoOrthoMetrics);
+  }
+
+  for (const StageRecord& stage : inputs.run.stages) {
+    metrics.timings_s.emplace_back(stage.name, stage.time_s);
+  }
+  metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
+  metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
+
+  const InsFloor floor =
+      computeInsFloor(frames_true, insFixesInW(inputs.survey), inputs.survey.config.ins);
+  metrics.ins_floor_rgb_ate_m = floor.rgb_ate_m;
+  metrics.ins_floor_scale_error = floor.scale_error;
+  return metrics;
+}
+
+EvaluationReport evaluateRunFolder(const std::filesystem::path& run_folder,
+                                   const std::filesystem::path& truth_folder) {
+  const EvaluationInputs inputs = loadEvaluationInputs(run_folder, truth_folder);
+  EvaluationReport report;
+  report.metrics = evaluateRun(inputs);
+  report.warnings = inputs.warnings;
+  report.metrics_path = run_folder / results_paths::metrics_json;
+  AtomicFile out(report.metrics_path);
+  out.stream() << metricsJson(report.metrics);
+  out.commit();
+  return report;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,33 @@
+#pragma once
+// `hsmap evaluate RUN --truth SURVEY/truth`: a run's results against the
+// survey's ground truth (docs/EVALUATE.md).
+//
+// evaluateRun() computes every metric of metrics.json from inputs already
+// loaded and checked (evaluation_inputs.h): trajectory metrics
+// (trajectory_metrics.h), calibration errors (calibration_metrics.h),
+// timings and peak memory from run.yaml, the INS floor (ins_floor.h).
+// Mesh and ortho-image metrics are null, with the reason, until the surface
+// and products stages exist: they will fill their MetricValue fields here.
+//
+// evaluateRunFolder() is the whole command: load, compute, write
+// RUN/metrics.json atomically. It throws InputError for bad input.
+
+#include <filesystem>
+
+#include "pipelines/evaluate/evaluation_inputs.h"
+#include "pipelines/evaluate/evaluation_metrics.h"
+
+namespace hsmap {
+
+EvaluationMetrics evaluateRun(const EvaluationInputs& inputs);
+
+struct EvaluationReport {
+  EvaluationMetrics metrics;
+  std::filesystem::path metrics_path;  // RUN/metrics.json, written
+  std::vector<std::string> warnings;   // from loading (evaluation_inputs.h)
+};
+
+EvaluationReport evaluateRunFolder(const std::filesystem::path& run_folder,
+                                   const std::filesystem::path& truth_folder);
+
+}  // namespace hsmap

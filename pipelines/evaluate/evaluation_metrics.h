@@ -1,0 +1,62 @@
+#pragma once
+// EvaluationMetrics: the figures of RUN/metrics.json (DATASET.md's keys, in
+// its order, plus the INS-floor extension), and their two renderings:
+//   - metricsJson(): the file. Every key present, `null` where a metric does
+//     not apply, numbers in shortest round-trip form (number_text.h), so a
+//     script reads back exactly what was computed;
+//   - printMetricsTable(): the same figures for people: metric, value, unit,
+//     the INS floor beside rgb_ate_m and rgb_scale_error, and the reason of
+//     every missing value.
+//
+// metricRows() lists the scalar metrics once, so the file, the table and any
+// later metric cannot disagree on keys, order or units.
+
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipelines/evaluate/metric_value.h"
+
+namespace hsmap {
+
+struct EvaluationMetrics {
+  std::string variant;  // from run.yaml
+  MetricValue rgb_ate_m;
+  MetricValue rgb_ate_aligned_m;
+  MetricValue rgb_scale_error;
+  MetricValue uhi_position_rmse_m;
+  MetricValue uhi_rotation_rmse_deg;
+  MetricValue extrinsic_rotation_error_deg;
+  MetricValue extrinsic_translation_error_m;
+  MetricValue time_offset_error_s;
+  // Surface and products metrics: filled when those stages exist.
+  MetricValue mesh_accuracy_m;
+  MetricValue mesh_completeness;
+  MetricValue ortho_mean_shift_m;
+  MetricValue ortho_registration_rmse_m;
+  MetricValue ortho_scale_error;
+  MetricValue ortho_sam_deg;
+  MetricValue ortho_coverage;
+  // Stage name -> wall time (s), in the order the stages ran, then "total".
+  std::vector<std::pair<std::string, double>> timings_s;
+  MetricValue peak_rss_mb;
+  // Extension (docs/EVALUATE.md, "INS floor"): what the INS alone allows.
+  MetricValue ins_floor_rgb_ate_m;
+  MetricValue ins_floor_scale_error;
+};
+
+// One scalar metric: its JSON key, unit ("m", "deg", "s", "MiB", "" for a
+// ratio) and where it lives.
+struct MetricRow {
+  const char* key;
+  const char* unit;
+  MetricValue EvaluationMetrics::*value;
+};
+// In metrics.json's order; timings_s goes between ortho_coverage and peak_rss_mb.
+const std::vector<MetricRow>& metricRows();
+
+std::string metricsJson(const EvaluationMetrics& metrics);
+void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics);
+
+}  // namespace hsmap

@@ -1,0 +1,169 @@
+#include "pipelines/georef/georef_bundle_adjuster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "core/geometry/camera_parameters.h"
+#include "core/geometry/pinhole_radtan_camera.h"
+#include "core/graph/factor_graph.h"
+#include "core/graph/values.h"
+#include "factors/ins_attitude_factor.h"
+#include "factors/ins_position_factor.h"
+#include "factors/reprojection_factor.h"
+
+namespace hsmap {
+namespace {
+
+SE3d poseOf(const Values& values, int keyframe) {
+  const Key key = X(std::uint64_t(keyframe));
+  return SE3d(values.poseRotation(key).normalized(), values.poseTranslation(key));
+}
+
+// Whitened position residual of each link's fix at the current values.
+std::vector<double> whitenedFixResiduals(const Values& values, const std::vector<InsFixLink>& links,
+                                         const std::vector<bool>& active, const InsBodyTrack& ins,
+                                         const SE3d& T_B_C, const InsNoise& noise,
+                                         std::vector<double>* offsets_m) {
+  const Eigen::Vector3d sigma(noise.sigma_horizontal_m, noise.sigma_horizontal_m,
+                              noise.sigma_depth_m);
+  std::vector<double> whitened(links.size(), 0.0);
+  if (offsets_m) offsets_m->assign(links.size(), 0.0);
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (!active[i]) continue;
+    const SE3d T_W_C = poseOf(values, links[i].keyframe) * links[i].T_K_C;
+    const Eigen::Vector3d p_W_B = T_W_C * T_B_C.inverse().t;
+    const Eigen::Vector3d error = p_W_B - ins.fixes()[std::size_t(links[i].fix)].p_W_B;
+    whitened[i] = error.cwiseQuotient(sigma).norm();
+    if (offsets_m) (*offsets_m)[i] = error.norm();
+  }
+  return whitened;
+}
+
+}  // namespace
+
+GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsFixLink>& links,
+                                          const InsBodyTrack& ins, const SE3d& T_B_C,
+                                          const InsNoise& noise,
+                                          const PinholeRadtanParameters& camera,
+                                          const GeorefBundleOptions& options) {
+  GeorefBundleReport report;
+  Values values;
+  std::set<int> used_keyframes;
+  std::vector<int> landmark_ids;
+  std::vector<bool> adjusted_landmark(map.landmarks().size(), false);
+  for (const Landmark& landmark : map.landmarks()) {
+    if (!landmark.valid || landmark.keyframe_ids.size() < 2) continue;
+    adjusted_landmark[std::size_t(landmark.id)] = true;
+    values.insertPoint(L(std::uint64_t(landmark.id)), landmark.p_F);
+    landmark_ids.push_back(landmark.id);
+    for (int k : landmark.keyframe_ids) used_keyframes.insert(k);
+  }
+  for (const InsFixLink& link : links) used_keyframes.insert(link.keyframe);
+  for (int k : used_keyframes) {
+    values.insertPose(X(std::uint64_t(k)), map.keyframe(k).T_F_C.q, map.keyframe(k).T_F_C.t);
+  }
+  report.keyframes = int(used_keyframes.size());
+  report.attitude_measured = ins.hasAttitude();
+  report.landmarks = int(landmark_ids.size());
+
+  const NoiseModel pixel_noise = NoiseModel::isotropic(2, options.pixel_sigma_px);
+  const RobustLoss huber = RobustLoss::huber(options.huber_sigmas);
+  const NoiseModel position_noise = NoiseModel::fromSigmas(
+      Eigen::Vector3d(noise.sigma_horizontal_m, noise.sigma_horizontal_m, noise.sigma_depth_m));
+  const NoiseModel attitude_noise = NoiseModel::fromSigmas(
+      ins.hasAttitude() ? noise.sigma_attitude_rad
+                        : Eigen::Vector3d(noise.assumed_level_sigma_rad, noise.assumed_level_sigma_rad,
+                                          noise.assumed_heading_sigma_rad));
+
+  std::vector<bool> active(links.size(), true);
+  SolverOptions solver;
+  solver.linear_solver = SolverOptions::LinearSolver::sparse_schur;
+  solver.max_iterations = options.max_iterations;
+  solver.num_threads = options.num_threads;
+  solver.function_tolerance = 1e-7;
+
+  for (int round = 0;; ++round) {
+    FactorGraph graph;
+    report.reprojection_factors = report.position_factors = report.attitude_factors = 0;
+    for (int k : used_keyframes) {
+      for (const KeyframeObservation& o : map.keyframe(k).observations) {
+        if (!adjusted_landmark[std::size_t(o.landmark_id)]) continue;
+        graph.emplace<ReprojectionFactor>(X(std::uint64_t(k)), L(std::uint64_t(o.landmark_id)),
+                                          o.pixel, camera, pixel_noise, huber);
+        ++report.reprojection_factors;
+      }
+    }
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      if (!active[i]) continue;
+      const InsFixInWorld& fix = ins.fixes()[std::size_t(links[i].fix)];
+      // T_B_K = T_B_C T_C_K: the fix's body pose seen from the keyframe.
+      const SE3d T_B_K = T_B_C * links[i].T_K_C.inverse();
+      graph.emplace<InsPositionFactor>(X(std::uint64_t(links[i].keyframe)), fix.p_W_B, T_B_K,
+                                       position_noise);
+      ++report.position_factors;
+      graph.emplace<InsAttitudeFactor>(X(std::uint64_t(links[i].keyframe)), fix.q_W_B, T_B_K,
+                                       attitude_noise);
+      ++report.attitude_factors;
+    }
+    const SolveReport solved = solve(graph, values, solver);
+    if (round == 0) report.first_solve = solved;
+    report.last_solve = solved;
+    ++report.solves;
+    if (!solved.usable) {
+      throw std::runtime_error("the geo-referencing bundle adjustment failed: " + solved.reason +
+                               " (" + solved.ceres_message + ")");
+    }
+    if (round >= options.max_fix_rejection_rounds) break;
+    std::vector<double> offsets;
+    const std::vector<double> whitened =
+        whitenedFixResiduals(values, links, active, ins, T_B_C, noise, &offsets);
+    // Reject the local maxima beyond the gate: a faulty fix drags its
+    // neighbours' residuals up too, and they recover once it is gone.
+    bool rejected_any = false;
+    for (std::size_t i = 0; i < links.size(); ++i) {
+      if (!active[i] || whitened[i] <= options.fix_gate_sigmas) continue;
+      bool local_max = true;
+      for (std::size_t j = (i >= 2 ? i - 2 : 0); j <= std::min(links.size() - 1, i + 2); ++j) {
+        if (j != i && active[j] && whitened[j] > whitened[i]) local_max = false;
+      }
+      if (!local_max) continue;
+      const InsFixInWorld& fix = ins.fixes()[std::size_t(links[i].fix)];
+      report.rejected.push_back({links[i].fix, fix.line_number, fix.t, offsets[i], "bundle adjustment"});
+      rejected_any = true;
+    }
+    if (!rejected_any) break;
+    for (const RejectedFix& r : report.rejected) {
+      for (std::size_t i = 0; i < links.size(); ++i) {
+        if (links[i].fix == r.fix) active[i] = false;
+      }
+    }
+  }
+
+  for (int k : used_keyframes) map.keyframe(k).T_F_C = poseOf(values, k);
+  for (int l : landmark_ids) map.landmark(l).p_F = values.point(L(std::uint64_t(l)));
+  // Observations the solve left far from their landmark are dropped, so the
+  // frames posed against this map next do not meet them.
+  const PinholeRadtanCamera lens(camera);
+  std::vector<std::pair<int, int>> far;  // (keyframe, landmark)
+  for (int k : used_keyframes) {
+    const Keyframe& keyframe = map.keyframe(k);
+    const SE3d T_C_W = keyframe.T_F_C.inverse();
+    for (const KeyframeObservation& o : keyframe.observations) {
+      if (!adjusted_landmark[std::size_t(o.landmark_id)]) continue;
+      const Eigen::Vector3d p_C = T_C_W * map.landmark(o.landmark_id).p_F;
+      if (!(p_C.z() > 0.0) || (lens.project(p_C) - o.pixel).norm() > options.outlier_px) {
+        far.emplace_back(k, o.landmark_id);
+      }
+    }
+  }
+  for (const auto& [k, l] : far) map.removeObservation(k, l);
+  report.removed_observations = int(far.size());
+  for (int l : landmark_ids) {
+    if (map.landmark(l).valid && map.landmark(l).keyframe_ids.size() < 2) map.removeLandmark(l);
+  }
+  return report;
+}
+
+}  // namespace hsmap

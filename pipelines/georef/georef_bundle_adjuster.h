@@ -1,0 +1,103 @@
+#pragma once
+// The geo-referencing bundle adjustment: every keyframe and landmark of the
+// front-end's map (already brought into W by the INS alignment), with
+//   - every 2D observation as a ReprojectionFactor (Huber loss, so tracks
+//     that slid onto another corner do not pull);
+//   - every INS fix as an InsPositionFactor and an InsAttitudeFactor, with
+//     the noise survey.yaml states. When the INS has no attitude, the
+//     attitude factor holds the level, along-track attitude of
+//     ins_body_track.h as a weak prior (InsNoise::assumed_*): without it a
+//     nearly straight track leaves the map free to roll about the track,
+//     which moves the camera by the lever arm and the seabed sideways.
+//
+// Fixes at their own time. A fix rarely falls on a keyframe: at 0.4 m/s a
+// 20 ms mismatch is 8 mm. Each fix is attached to the keyframe K nearest in
+// time in the same map segment, through the front-end's relative pose
+// T_K_C(t_fix) from K to the camera at the fix time (interpolated between
+// the frames around it). The factor's mounting becomes
+//     T_B_K = T_B_C T_C_K(t_fix)
+// (InsPositionFactor/InsAttitudeFactor with that in place of T_B_C), so the
+// fix constrains the trajectory where the vehicle really was when it was
+// recorded. T_K_C spans at most half a keyframe interval, so the drift of
+// the front-end over it is negligible.
+//
+// Faulty fixes. After a solve, every fix's position residual is whitened by
+// its sigmas; a fix beyond `fix_gate_sigmas` (5: a chi-square tail of 1e-5
+// for 3 degrees of freedom) that is also the worst within two fixes either
+// side (its neighbours are pulled by it) is left out and the problem is
+// solved again, for at most `max_fix_rejection_rounds` rounds. Each
+// rejected fix is reported with its ins.csv line and its distance from the
+// adjusted track.
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/geometry/se3.h"
+#include "pipelines/frontend/visual_map.h"
+#include "pipelines/georef/ins_body_track.h"
+#include "solvers/graph_solver.h"
+
+namespace hsmap {
+
+struct PinholeRadtanParameters;
+
+// One INS fix attached to a keyframe.
+struct InsFixLink {
+  int fix = -1;       // index into InsBodyTrack::fixes()
+  int keyframe = -1;  // keyframe id in the map
+  SE3d T_K_C;         // camera at the fix time, relative to the keyframe (W units)
+};
+
+struct InsNoise {
+  double sigma_horizontal_m = 0.5;
+  double sigma_depth_m = 0.05;
+  Eigen::Vector3d sigma_attitude_rad = Eigen::Vector3d::Constant(1e-3);
+  // Without INS attitude: an ROV flies level within a few degrees, and its
+  // heading follows its track within a crab angle.
+  double assumed_level_sigma_rad = 5.0 * M_PI / 180.0;
+  double assumed_heading_sigma_rad = 30.0 * M_PI / 180.0;
+};
+
+struct GeorefBundleOptions {
+  double pixel_sigma_px = 1.0;
+  double huber_sigmas = 2.0;
+  double fix_gate_sigmas = 5.0;
+  int max_fix_rejection_rounds = 3;
+  int max_iterations = 50;
+  int num_threads = 2;
+  double outlier_px = 3.0;  // observations beyond this after the solve are removed from the map
+};
+
+struct RejectedFix {
+  int fix = -1;
+  long long line_number = 0;
+  double t = 0.0;
+  double offset_m = 0.0;   // distance of the fix from the track, metres
+  std::string stage;       // "alignment" or "bundle adjustment"
+};
+
+struct GeorefBundleReport {
+  SolveReport first_solve;
+  SolveReport last_solve;
+  int solves = 0;
+  int keyframes = 0;
+  int landmarks = 0;
+  int reprojection_factors = 0;
+  int position_factors = 0;
+  int attitude_factors = 0;
+  bool attitude_measured = true;  // false: the attitude factors are the assumed priors
+  int removed_observations = 0;
+  std::vector<RejectedFix> rejected;  // in the bundle adjustment
+};
+
+// Adjusts `map` (poses T_F_C and points p_F, here in W) in place. Keyframes
+// observing no landmark and landmarks with fewer than 2 observations stay
+// as they are. Throws std::runtime_error when the solve is not usable.
+GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsFixLink>& links,
+                                          const InsBodyTrack& ins, const SE3d& T_B_C,
+                                          const InsNoise& noise,
+                                          const PinholeRadtanParameters& camera,
+                                          const GeorefBundleOptions& options);
+
+}  // namespace hsmap

@@ -1,0 +1,96 @@
+#include "pipelines/georef/georef_result.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace hsmap {
+namespace {
+
+std::string fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+std::string sourceCounts(int vision, int bridged, int ins_only, int held, const char* unit) {
+  std::ostringstream out;
+  bool first = true;
+  auto item = [&](int count, const char* what) {
+    if (count == 0) return;
+    out << (first ? "" : ", ") << count << " " << what;
+    first = false;
+  };
+  item(vision, "from vision");
+  item(bridged, "bridged by the INS across tracking gaps");
+  item(ins_only, "from the INS alone");
+  item(held, "held at the nearest pose (beyond vision and the INS)");
+  if (first) out << "no " << unit;
+  return out.str();
+}
+
+}  // namespace
+
+int GeorefResult::frameCount(PoseSource source) const {
+  return int(std::count_if(frames.begin(), frames.end(),
+                           [&](const GeorefFramePose& f) { return f.source == source; }));
+}
+
+int GeorefResult::lineCount(PoseSource source) const {
+  return int(std::count_if(lines.begin(), lines.end(),
+                           [&](const GeorefLinePose& l) { return l.source == source; }));
+}
+
+std::string GeorefResult::summary() const {
+  std::ostringstream out;
+  out << "georef (" << variant << "): " << frames.size() << " frames and " << lines.size()
+      << " scan lines posed in W";
+  if (!landmarks_W.empty()) out << ", " << landmarks_W.size() << " landmarks";
+  out << "\n";
+  if (alignment) {
+    out << "  INS alignment: " << alignment->inlier_count << " of "
+        << alignment->paired_fixes.size() << " fixes within vision agree (threshold "
+        << fixed(alignment->threshold_m, 2) << " m), rms " << fixed(alignment->rms_m, 3)
+        << " m, scale " << alignment->S_W_F.scale() << ", rotation from "
+        << alignment->rotation_from << "\n";
+  }
+  if (bundle) {
+    const GeorefBundleReport& b = *bundle;
+    out << "  bundle adjustment: " << b.keyframes << " keyframes, " << b.landmarks
+        << " landmarks, " << b.reprojection_factors << " reprojections, " << b.position_factors
+        << " INS positions";
+    out << ", " << b.attitude_factors
+        << (b.attitude_measured ? " INS attitudes" : " level, along-track attitude priors");
+    out << "; " << b.solves << (b.solves == 1 ? " solve" : " solves") << "\n";
+    out << "  " << b.last_solve.toString() << "\n";
+    out << "  " << b.removed_observations
+        << " observations beyond 3 px after the solve removed from the map\n";
+  }
+  if (rejected_fixes.empty()) {
+    if (alignment) out << "  INS fixes left out: none\n";
+  } else {
+    out << "  INS fixes left out (" << rejected_fixes.size() << "):\n";
+    for (const RejectedFix& r : rejected_fixes) {
+      out << "    ins.csv line " << r.line_number << " (t = " << fixed(r.t, 3) << " s): "
+          << fixed(r.offset_m, 2) << " m off the track, found by the " << r.stage << "\n";
+    }
+  }
+  if (variant == "sequential") {
+    out << "  frames posed by vision: " << repose.keyframes << " keyframes from the adjustment, "
+        << repose.pnp << " by PnP on the adjusted landmarks";
+    if (repose.from_keyframe > 0) {
+      out << ", " << repose.from_keyframe << " carried by their keyframe (PnP failed)";
+    }
+    out << "\n";
+  }
+  out << "  frames: "
+      << sourceCounts(frameCount(PoseSource::vision), frameCount(PoseSource::ins_bridged),
+                      frameCount(PoseSource::ins_only), frameCount(PoseSource::held), "frames")
+      << "\n";
+  out << "  scan lines (t + " << time_offset_s << " s, through T_C_U): "
+      << sourceCounts(lineCount(PoseSource::vision), lineCount(PoseSource::ins_bridged),
+                      lineCount(PoseSource::ins_only), lineCount(PoseSource::held), "lines");
+  return out.str();
+}
+
+}  // namespace hsmap

@@ -1,0 +1,106 @@
+#include "pipelines/georef/ins_body_track.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/geometry/local_ned_frame.h"
+#include "core/geometry/pose_interpolation.h"
+#include "core/geometry/so3.h"
+#include "core/survey/survey.h"
+
+namespace hsmap {
+namespace {
+
+std::vector<InsFixInWorld> fixesInWorld(const Survey& survey) {
+  const LocalNedFrame ned(survey.origin);
+  std::vector<InsFixInWorld> fixes;
+  fixes.reserve(survey.ins.fixes.size());
+  for (const InsFix& fix : survey.ins.fixes) {
+    InsFixInWorld w;
+    w.t = fix.t;
+    w.p_W_B = ned.toNed(GeodeticPoint{fix.lat_deg, fix.lon_deg, fix.depth_m});
+    if (survey.ins.has_attitude) {
+      w.q_W_B = quaternionFromRollPitchHeadingDeg(fix.roll_deg, fix.pitch_deg, fix.heading_deg);
+    }
+    w.line_number = fix.line_number;
+    fixes.push_back(w);
+  }
+  return fixes;
+}
+
+}  // namespace
+
+InsBodyTrack::InsBodyTrack(const Survey& survey, double heading_window_s)
+    : InsBodyTrack(fixesInWorld(survey), survey.ins.has_attitude, heading_window_s) {}
+
+InsBodyTrack::InsBodyTrack(std::vector<InsFixInWorld> fixes, bool has_attitude,
+                           double heading_window_s)
+    : fixes_(std::move(fixes)), has_attitude_(has_attitude) {
+  if (fixes_.empty()) throw std::invalid_argument("InsBodyTrack: no INS fixes");
+  for (std::size_t i = 0; i < fixes_.size(); ++i) {
+    if (i > 0 && !(fixes_[i].t > fixes_[i - 1].t)) {
+      std::ostringstream message;
+      message << "InsBodyTrack: fix " << i << " at t = " << fixes_[i].t
+              << " s does not follow the previous one (t = " << fixes_[i - 1].t << " s)";
+      throw std::invalid_argument(message.str());
+    }
+    times_.push_back(fixes_[i].t);
+  }
+  if (!has_attitude_) deriveAlongTrackAttitude(heading_window_s);
+}
+
+void InsBodyTrack::deriveAlongTrackAttitude(double heading_window_s) {
+  // Direction of travel: the least-squares slope of north and east against
+  // time over the fixes within half a window of each fix (at least its two
+  // neighbours), so fix noise averages out along the track.
+  const double half = 0.5 * heading_window_s;
+  double last_heading = 0.0;
+  for (std::size_t i = 0; i < fixes_.size(); ++i) {
+    std::size_t first = i, last = i;
+    while (first > 0 && fixes_[i].t - fixes_[first - 1].t <= half) --first;
+    while (last + 1 < fixes_.size() && fixes_[last + 1].t - fixes_[i].t <= half) ++last;
+    if (first == last) {
+      if (first > 0) --first;
+      if (last + 1 < fixes_.size()) ++last;
+    }
+    double mean_t = 0.0;
+    Eigen::Vector2d mean_p = Eigen::Vector2d::Zero();
+    const double n = double(last - first + 1);
+    for (std::size_t j = first; j <= last; ++j) {
+      mean_t += fixes_[j].t / n;
+      mean_p += fixes_[j].p_W_B.head<2>() / n;
+    }
+    double stt = 0.0;
+    Eigen::Vector2d stp = Eigen::Vector2d::Zero();
+    for (std::size_t j = first; j <= last; ++j) {
+      const double dt = fixes_[j].t - mean_t;
+      stt += dt * dt;
+      stp += dt * (fixes_[j].p_W_B.head<2>() - mean_p);
+    }
+    // A vehicle that holds still keeps the last heading it had.
+    const Eigen::Vector2d velocity = stt > 0.0 ? Eigen::Vector2d(stp / stt) : Eigen::Vector2d::Zero();
+    if (velocity.norm() > 1e-3) last_heading = std::atan2(velocity.y(), velocity.x());
+    fixes_[i].q_W_B = Eigen::Quaterniond(Eigen::AngleAxisd(last_heading, Eigen::Vector3d::UnitZ()));
+  }
+}
+
+bool InsBodyTrack::covers(double t) const { return t >= times_.front() && t <= times_.back(); }
+
+SE3d InsBodyTrack::bodyPose(double t) const {
+  if (!covers(t)) {
+    std::ostringstream message;
+    message << "InsBodyTrack: t = " << t << " s is outside the INS fixes [" << times_.front()
+            << ", " << times_.back() << "] s";
+    throw std::out_of_range(message.str());
+  }
+  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  if (after == times_.end()) return SE3d(fixes_.back().q_W_B, fixes_.back().p_W_B);
+  const std::size_t i = std::size_t(after - times_.begin()) - 1;
+  const double alpha = (t - times_[i]) / (times_[i + 1] - times_[i]);
+  return interpolatePose(SE3d(fixes_[i].q_W_B, fixes_[i].p_W_B),
+                         SE3d(fixes_[i + 1].q_W_B, fixes_[i + 1].p_W_B), alpha);
+}
+
+}  // namespace hsmap

@@ -1,0 +1,61 @@
+#pragma once
+// InsBodyTrack: the INS fixes in the world frame W, and the body pose
+// T_W_B(t) between them, for the geo-referencing stage.
+//
+// Each fix (lat, lon, depth) becomes p_W_B through LocalNedFrame at the
+// survey's origin (GeographicLib; docs/SURVEY_FORMAT.md). Its attitude is
+// the INS's roll, pitch and heading when ins.csv has them. Without them the
+// attitude is what a classical mosaic assumes: level (roll = pitch = 0) and
+// heading along the track, the direction of travel fitted over a window of
+// fixes around t (`heading_window_s`): with decimetre fix noise a heading
+// from two consecutive 1 Hz fixes of a vehicle at 0.4 m/s would swing by
+// tens of degrees, a straight-line fit over several seconds does not.
+//
+// Between fixes the position is interpolated on a straight line and the
+// attitude along the SO(3) geodesic (core/geometry/pose_interpolation.h).
+// Nothing is extrapolated: covers(t) says whether t lies within the fixes.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "core/geometry/se3.h"
+
+namespace hsmap {
+
+struct Survey;
+
+struct InsFixInWorld {
+  double t = 0.0;
+  Eigen::Vector3d p_W_B = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond q_W_B = Eigen::Quaterniond::Identity();  // measured, or derived (see above)
+  long long line_number = 0;  // line in ins.csv (0 when not read from a file)
+};
+
+class InsBodyTrack {
+ public:
+  // From the survey's INS (survey.ins, survey.origin).
+  explicit InsBodyTrack(const Survey& survey, double heading_window_s = 20.0);
+  // From fixes already in W; when !has_attitude their q_W_B are replaced by
+  // the level, along-track attitude. Throws std::invalid_argument for no
+  // fixes or times that do not increase.
+  InsBodyTrack(std::vector<InsFixInWorld> fixes, bool has_attitude, double heading_window_s = 20.0);
+
+  bool hasAttitude() const { return has_attitude_; }
+  const std::vector<InsFixInWorld>& fixes() const { return fixes_; }
+  bool covers(double t) const;
+  double startTime() const { return fixes_.front().t; }
+  double endTime() const { return fixes_.back().t; }
+
+  // T_W_B at t; std::out_of_range when !covers(t).
+  SE3d bodyPose(double t) const;
+
+ private:
+  void deriveAlongTrackAttitude(double heading_window_s);
+
+  std::vector<InsFixInWorld> fixes_;
+  std::vector<double> times_;
+  bool has_attitude_ = false;
+};
+
+}  // namespace hsmap

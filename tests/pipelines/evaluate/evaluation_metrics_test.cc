@@ -1,0 +1,93 @@
+// metrics.json and the table: every key of the contract, in its order, null
+// where a metric is missing, numbers in shortest round-trip form.
+#include "pipelines/evaluate/evaluation_metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace hsmap {
+namespace {
+
+EvaluationMetrics example() {
+  EvaluationMetrics metrics;
+  metrics.variant = "joint";
+  metrics.rgb_ate_m = MetricValue::of(0.1);
+  metrics.rgb_ate_aligned_m = MetricValue::of(0.0123456789012345);
+  metrics.rgb_scale_error = MetricValue::of(1e-7);
+  metrics.uhi_position_rmse_m = MetricValue::of(0.02);
+  metrics.uhi_rotation_rmse_deg = MetricValue::of(0.5);
+  metrics.extrinsic_rotation_error_deg = MetricValue::of(0.25);
+  metrics.extrinsic_translation_error_m = MetricValue::of(0.004);
+  metrics.time_offset_error_s = MetricValue::of(0.0);
+  const MetricValue no_mesh = MetricValue::missing("no surface stage");
+  metrics.mesh_accuracy_m = no_mesh;
+  metrics.mesh_completeness = no_mesh;
+  const MetricValue no_ortho = MetricValue::missing("no products stage");
+  metrics.ortho_mean_shift_m = no_ortho;
+  metrics.ortho_registration_rmse_m = no_ortho;
+  metrics.ortho_scale_error = no_ortho;
+  metrics.ortho_sam_deg = no_ortho;
+  metrics.ortho_coverage = no_ortho;
+  metrics.timings_s = {{"frontend", 12.5}, {"geo \"ref\"", 3.25}, {"total", 15.75}};
+  metrics.peak_rss_mb = MetricValue::of(300);
+  metrics.ins_floor_rgb_ate_m = MetricValue::of(0.05);
+  metrics.ins_floor_scale_error = MetricValue::missing("2 INS fix(es)");
+  return metrics;
+}
+
+TEST(EvaluationMetrics, JsonHasEveryKeyInTheContractsOrder) {
+  EXPECT_EQ(metricsJson(example()),
+            "{\n"
+            "  \"variant\": \"joint\",\n"
+            "  \"rgb_ate_m\": 0.1,\n"
+            "  \"rgb_ate_aligned_m\": 0.0123456789012345,\n"
+            "  \"rgb_scale_error\": 1e-07,\n"
+            "  \"uhi_position_rmse_m\": 0.02,\n"
+            "  \"uhi_rotation_rmse_deg\": 0.5,\n"
+            "  \"extrinsic_rotation_error_deg\": 0.25,\n"
+            "  \"extrinsic_translation_error_m\": 0.004,\n"
+            "  \"time_offset_error_s\": 0,\n"
+            "  \"mesh_accuracy_m\": null,\n"
+            "  \"mesh_completeness\": null,\n"
+            "  \"ortho_mean_shift_m\": null,\n"
+            "  \"ortho_registration_rmse_m\": null,\n"
+            "  \"ortho_scale_error\": null,\n"
+            "  \"ortho_sam_deg\": null,\n"
+            "  \"ortho_coverage\": null,\n"
+            "  \"timings_s\": {\"frontend\": 12.5, \"geo \\\"ref\\\"\": 3.25, \"total\": 15.75},\n"
+            "  \"peak_rss_mb\": 300,\n"
+            "  \"ins_floor_rgb_ate_m\": 0.05,\n"
+            "  \"ins_floor_scale_error\": null\n"
+            "}\n");
+}
+
+TEST(EvaluationMetrics, TableShowsValuesUnitsTheInsFloorAndWhyAValueIsMissing) {
+  std::ostringstream out;
+  printMetricsTable(out, example());
+  EXPECT_EQ(out.str(),
+            "variant: joint\n"
+            "metric                          value         unit  INS floor\n"
+            "rgb_ate_m                       0.1           m     0.05\n"
+            "rgb_ate_aligned_m               0.0123457     m\n"
+            "rgb_scale_error                 1e-07               null          INS floor: 2 INS fix(es)\n"
+            "uhi_position_rmse_m             0.02          m\n"
+            "uhi_rotation_rmse_deg           0.5           deg\n"
+            "extrinsic_rotation_error_deg    0.25          deg\n"
+            "extrinsic_translation_error_m   0.004         m\n"
+            "time_offset_error_s             0             s\n"
+            "mesh_accuracy_m                 null          m                   no surface stage\n"
+            "mesh_completeness               null                              no surface stage\n"
+            "ortho_mean_shift_m              null          m                   no products stage\n"
+            "ortho_registration_rmse_m       null          m                   no products stage\n"
+            "ortho_scale_error               null                              no products stage\n"
+            "ortho_sam_deg                   null          deg                 no products stage\n"
+            "ortho_coverage                  null                              no products stage\n"
+            "timings_s.frontend              12.5          s\n"
+            "timings_s.geo \"ref\"             3.25          s\n"
+            "timings_s.total                 15.75         s\n"
+            "peak_rss_mb                     300           MiB\n");
+}
+
+}  // namespace
+}  // namespace hsmap

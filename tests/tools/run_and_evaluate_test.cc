@@ -1,0 +1,170 @@
+// `hsmap run` (both variants) and `hsmap evaluate` on the simulated `tiny`
+// survey, through the real binary: every file the data contract lists for
+// these stages is written and reads back under its rules, the rows match the
+// survey, and the scores say what the variants are (sequential's shape to
+// millimetres, its absolute error below planar's). Then a fix that jumped
+// metres is found and reported, and a failed run leaves no product.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+#include "core/io/ply_io.h"
+#include "core/survey/csv_table.h"
+#include "core/survey/pose_tables.h"
+#include "core/survey/run_calibration.h"
+#include "core/survey/run_record.h"
+#include "core/survey/survey.h"
+#include "tests/support/run_hsmap.h"
+#include "tests/support/temp_folder.h"
+
+namespace hsmap {
+namespace {
+
+using testing::quoted;
+using testing::readText;
+using testing::RunResult;
+using testing::runHsmap;
+using testing::TempFolder;
+
+namespace fs = std::filesystem;
+
+// One simulated tiny survey for the whole program (3 s to write).
+const fs::path& tinySurvey() {
+  static const TempFolder folder("run-evaluate-survey");
+  static const fs::path survey = [] {
+    const fs::path path = folder / "tiny";
+    const RunResult simulate = runHsmap(folder, "simulate --preset tiny --out " + quoted(path.string()));
+    if (simulate.exit_status != 0) throw std::runtime_error("simulate failed: " + simulate.err);
+    return path;
+  }();
+  return survey;
+}
+
+// A number of metrics.json by key; NaN when the key is missing, and the
+// text "null" gives -1 (the metrics checked here are never negative).
+double metric(const std::string& json, const std::string& key) {
+  const std::regex pattern("\"" + key + "\"\\s*:\\s*(null|[-0-9.eE+]+)");
+  std::smatch match;
+  if (!std::regex_search(json, match, pattern)) return std::nan("");
+  return match[1] == "null" ? -1.0 : std::stod(match[1]);
+}
+
+class RunAndEvaluate : public ::testing::Test {
+ protected:
+  TempFolder temp_{"run-evaluate"};
+
+  RunResult run(const std::string& variant, const fs::path& out, const fs::path& survey = tinySurvey()) {
+    return runHsmap(temp_, "run " + quoted(survey.string()) + " --out " + quoted(out.string()) +
+                               " --variant " + variant);
+  }
+
+  // Every file of the contract these stages write, read back strictly.
+  void expectContractFiles(const fs::path& out, const std::string& variant) {
+    const Survey survey = loadSurvey(tinySurvey());
+    const auto frames = readTimedPoseTable(out / "trajectory/frames.csv");
+    ASSERT_EQ(frames.size(), survey.rgb.times().size());
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      EXPECT_EQ(frames[i].t, survey.rgb.times()[i]) << "frame " << i;  // copied exactly
+    }
+    const auto lines = readLinePoseTable(out / "trajectory/uhi_lines.csv");
+    ASSERT_EQ(lines.size(), survey.line_times.size());
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      EXPECT_EQ(lines[i].line, static_cast<long long>(i));
+      EXPECT_DOUBLE_EQ(lines[i].t, survey.line_times[i] + survey.config.uhi.time_offset_s);
+    }
+    EXPECT_EQ(testing::countLines(out / "trajectory/frames.tum"), static_cast<long long>(frames.size()));
+    const RunCalibration calibration = readRunCalibration(out / "calibration.yaml");
+    EXPECT_EQ(calibration.variant, variant);
+    EXPECT_TRUE(calibration.T_C_U.rotation.isApprox(survey.config.uhi.T_C_U.rotation));
+    EXPECT_FALSE(calibration.sigma_rotation_deg.has_value());  // not estimated: null
+    const RunRecord record = readRunRecord(out / "run.yaml");
+    EXPECT_EQ(record.variant, variant);
+    EXPECT_EQ(fs::canonical(record.survey), fs::canonical(tinySurvey()));
+    ASSERT_FALSE(record.stages.empty());
+    EXPECT_EQ(record.stages.back().name, "georef");
+    EXPECT_FALSE(fs::exists(out / "georef.partial"));
+  }
+};
+
+TEST_F(RunAndEvaluate, SequentialAndPlanarWriteTheContractAndScoreAsTheyShould) {
+  const fs::path sequential = temp_ / "sequential";
+  const RunResult seq = run("sequential", sequential);
+  ASSERT_EQ(seq.exit_status, 0) << seq.err << seq.out;
+  for (const char* expected : {"georef (sequential)", "Levenberg", "INS fixes left out: none",
+                               "stage times and peak memory", "run.yaml written"}) {
+    EXPECT_NE(seq.out.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << seq.out;
+  }
+  expectContractFiles(sequential, "sequential");
+  EXPECT_GT(readPly(sequential / "map/sparse.ply").vertices.size(), 100u);
+
+  const fs::path planar = temp_ / "planar";
+  const RunResult pla = run("planar", planar);
+  ASSERT_EQ(pla.exit_status, 0) << pla.err << pla.out;
+  expectContractFiles(planar, "planar");
+  EXPECT_FALSE(fs::exists(planar / "map/sparse.ply"));  // no vision, no landmarks
+  EXPECT_FALSE(fs::exists(planar / "frontend"));
+
+  const fs::path truth = tinySurvey() / "truth";
+  std::string json[2];
+  for (int v = 0; v < 2; ++v) {
+    const fs::path out = v == 0 ? sequential : planar;
+    const RunResult evaluate =
+        runHsmap(temp_, "evaluate " + quoted(out.string()) + " --truth " + quoted(truth.string()));
+    ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err << evaluate.out;
+    json[v] = readText(out / "metrics.json");
+    for (const char* key : {"rgb_ate_m", "rgb_ate_aligned_m", "rgb_scale_error", "uhi_position_rmse_m",
+                            "uhi_rotation_rmse_deg", "extrinsic_rotation_error_deg",
+                            "extrinsic_translation_error_m", "time_offset_error_s", "mesh_accuracy_m",
+                            "mesh_completeness", "ortho_mean_shift_m", "ortho_registration_rmse_m",
+                            "ortho_scale_error", "ortho_sam_deg", "ortho_coverage", "peak_rss_mb"}) {
+      EXPECT_FALSE(std::isnan(metric(json[v], key))) << key << " missing from\n" << json[v];
+    }
+    EXPECT_NE(json[v].find("\"timings_s\""), std::string::npos) << json[v];
+    EXPECT_EQ(metric(json[v], "mesh_accuracy_m"), -1.0);  // null: no surface stage yet
+    EXPECT_NE(evaluate.out.find("rgb_ate_m"), std::string::npos) << evaluate.out;
+  }
+  // The shape of the trajectory to millimetres (vision); placed by the INS
+  // better than the INS alone places it.
+  EXPECT_LT(metric(json[0], "rgb_ate_aligned_m"), 0.01) << json[0];
+  EXPECT_LT(metric(json[0], "rgb_ate_m"), metric(json[1], "rgb_ate_m")) << json[0] << json[1];
+  EXPECT_GT(metric(json[1], "rgb_ate_aligned_m"), metric(json[0], "rgb_ate_aligned_m"));
+}
+
+TEST_F(RunAndEvaluate, AFixThatJumpedMetresIsLeftOutAndReportedByItsLine) {
+  const fs::path survey = temp_ / "jumped";
+  testing::copyFolder(tinySurvey(), survey);
+  // Fix 12 (line 14 of ins.csv) moved 5 m north.
+  InsTable ins = readInsCsv(survey / "nav/ins.csv");
+  ins.fixes[12].lat_deg += 5.0 / 111120.0;
+  writeInsCsv(survey / "nav/ins.csv", ins);
+  const RunResult result = run("sequential", temp_ / "out", survey);
+  ASSERT_EQ(result.exit_status, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("INS fixes left out (1):"), std::string::npos) << result.out;
+  EXPECT_TRUE(std::regex_search(result.out, std::regex("ins.csv line 14 \\(t = [0-9.]+ s\\): (4\\.[5-9]|5\\.[0-4])[0-9]* m "
+                                                       "off the track, found by the alignment")))
+      << result.out;
+}
+
+TEST_F(RunAndEvaluate, AFailedStageLeavesNoProductAndNoRunYaml) {
+  // The INS logged nothing while the video ran: no fix within vision.
+  const fs::path survey = temp_ / "ins-gap";
+  testing::copyFolder(tinySurvey(), survey);
+  const Survey loaded = loadSurvey(tinySurvey());
+  InsTable ins = readInsCsv(survey / "nav/ins.csv");
+  std::erase_if(ins.fixes, [&](const InsFix& fix) {
+    return fix.t >= loaded.rgb.times().front() && fix.t <= loaded.rgb.times().back();
+  });
+  writeInsCsv(survey / "nav/ins.csv", ins);
+  const fs::path out = temp_ / "out";
+  const RunResult result = run("sequential", out, survey);
+  EXPECT_EQ(result.exit_status, 1) << result.out;
+  EXPECT_NE(result.err.find("error: stage georef failed: cannot geo-reference"), std::string::npos) << result.err;
+  EXPECT_TRUE(fs::exists(out / "frontend/frames.csv"));  // the stage before it completed
+  for (const char* product : {"run.yaml", "trajectory", "calibration.yaml", "map", "georef.partial"}) {
+    EXPECT_FALSE(fs::exists(out / product)) << product;
+  }
+}
+
+}  // namespace
+}  // namespace hsmap
