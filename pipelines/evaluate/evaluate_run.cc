@@ -59,7 +59,7 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
 
   const InsFloor floor =
-      computeInsFloor(frames_true, insFixesInW(inputs.survey), inputs.survey.config.ins);
+      computeInsFloor(frames_true, insFixesInWorld(inputs.survey), inputs.survey.config.ins);
   metrics.ins_floor_rgb_ate_m = floor.rgb_ate_m;
   metrics.ins_floor_scale_error = floor.scale_error;
   return metrics;

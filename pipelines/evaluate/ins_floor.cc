@@ -6,7 +6,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/geometry/local_ned_frame.h"
 #include "core/geometry/pose_interpolation.h"
 #include "core/geometry/so3.h"
 #include "core/survey/number_text.h"
@@ -70,7 +69,7 @@ struct FixAttitudeResidual {
 
 struct TruthAtFix {
   SE3d T_W_B;  // true body pose at the fix time
-  const InsFixInW* fix = nullptr;
+  const InsFixInWorld* fix = nullptr;
 };
 
 InsFloor missing(const std::string& why) {
@@ -98,25 +97,9 @@ Sim3 initialSimilarity(const std::vector<TruthAtFix>& pairs) {
 
 }  // namespace
 
-std::vector<InsFixInW> insFixesInW(const Survey& survey) {
-  const LocalNedFrame ned(survey.origin);
-  std::vector<InsFixInW> fixes;
-  fixes.reserve(survey.ins.fixes.size());
-  for (const InsFix& fix : survey.ins.fixes) {
-    InsFixInW converted;
-    converted.t = fix.t;
-    converted.p_W_B = ned.toNed(GeodeticPoint{fix.lat_deg, fix.lon_deg, fix.depth_m});
-    if (survey.ins.has_attitude) {
-      converted.q_W_B =
-          quaternionFromRollPitchHeadingDeg(fix.roll_deg, fix.pitch_deg, fix.heading_deg);
-    }
-    fixes.push_back(converted);
-  }
-  return fixes;
-}
 
 InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
-                         const std::vector<InsFixInW>& fixes, const InsConfig& ins) {
+                         const std::vector<InsFixInWorld>& fixes, const InsConfig& ins) {
   if (frames_true.empty()) throw std::invalid_argument("computeInsFloor: no frames");
   std::vector<double> times;
   std::vector<SE3d> poses;
@@ -130,7 +113,7 @@ InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
   // ins.csv has attitude for every fix or for none (csv_table.h).
   const bool with_attitude = !fixes.empty() && fixes.front().q_W_B.has_value();
   std::vector<TruthAtFix> pairs;
-  for (const InsFixInW& fix : fixes) {
+  for (const InsFixInWorld& fix : fixes) {
     if (!trajectory.covers(fix.t)) continue;
     if (fix.q_W_B.has_value() != with_attitude) {
       throw std::invalid_argument("computeInsFloor: attitude on some fixes only");

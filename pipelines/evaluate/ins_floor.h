@@ -46,23 +46,14 @@
 #include <vector>
 
 #include "core/geometry/sim3.h"
+#include "core/survey/ins_fixes_in_world.h"
 #include "core/survey/pose_tables.h"
 #include "core/survey/survey_config.h"
 #include "pipelines/evaluate/metric_value.h"
 
 namespace hsmap {
 
-struct Survey;
 
-// One INS fix in W: the body position and, when ins.csv has attitude, R_W_B.
-struct InsFixInW {
-  double t = 0.0;
-  Eigen::Vector3d p_W_B = Eigen::Vector3d::Zero();
-  std::optional<Eigen::Quaterniond> q_W_B;
-};
-
-// The survey's fixes converted to W (geodetic -> local NED at survey.origin).
-std::vector<InsFixInW> insFixesInW(const Survey& survey);
 
 struct InsFloor {
   MetricValue rgb_ate_m;    // ins_floor_rgb_ate_m
@@ -74,6 +65,6 @@ struct InsFloor {
 // `frames_true` is T_W_C per frame (strictly increasing t); `ins` gives
 // T_B_C and the sigmas (sigma_horizontal_m, sigma_depth_m, sigma_attitude_deg).
 InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
-                         const std::vector<InsFixInW>& fixes, const InsConfig& ins);
+                         const std::vector<InsFixInWorld>& fixes, const InsConfig& ins);
 
 }  // namespace hsmap

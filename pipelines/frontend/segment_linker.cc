@@ -1,12 +1,11 @@
 #include "pipelines/frontend/segment_linker.h"
 
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "core/geometry/local_ned_frame.h"
-#include "core/geometry/so3.h"
+#include "core/geometry/rotation_anchored_alignment.h"
+#include "core/survey/ins_fixes_in_world.h"
 #include "core/survey/survey.h"
 
 namespace hsmap {
@@ -14,13 +13,10 @@ namespace hsmap {
 InsCameraTrack::InsCameraTrack(const Survey& survey)
     : has_attitude_(survey.ins.has_attitude),
       T_B_C_(survey.config.ins.T_B_C.rotation, survey.config.ins.T_B_C.translation_m) {
-  const LocalNedFrame ned(survey.origin);
-  for (const InsFix& fix : survey.ins.fixes) {
+  for (const InsFixInWorld& fix : insFixesInWorld(survey)) {
     times_.push_back(fix.t);
-    p_W_B_.push_back(ned.toNed(GeodeticPoint{fix.lat_deg, fix.lon_deg, fix.depth_m}));
-    q_W_B_.push_back(has_attitude_ ? quaternionFromRollPitchHeadingDeg(fix.roll_deg, fix.pitch_deg,
-                                                                        fix.heading_deg)
-                                   : Eigen::Quaterniond::Identity());
+    p_W_B_.push_back(fix.p_W_B);
+    q_W_B_.push_back(fix.q_W_B.value_or(Eigen::Quaterniond::Identity()));
   }
 }
 
@@ -76,40 +72,6 @@ Eigen::Quaterniond InsCameraTrack::bodyAttitude(double t) const {
   return q_W_B_[i].slerp(alpha, q_W_B_[i + 1]);
 }
 
-namespace {
-
-// Scale and translation of p_W = s R p_S + t given R (least squares).
-Sim3 fitScaleTranslation(const Eigen::Quaterniond& q_W_S, const std::vector<Eigen::Vector3d>& p_S,
-                         const std::vector<Eigen::Vector3d>& p_W) {
-  Eigen::Vector3d mean_S = Eigen::Vector3d::Zero(), mean_W = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < p_S.size(); ++i) {
-    mean_S += p_S[i];
-    mean_W += p_W[i];
-  }
-  mean_S /= double(p_S.size());
-  mean_W /= double(p_W.size());
-  double num = 0.0, den = 0.0;
-  for (std::size_t i = 0; i < p_S.size(); ++i) {
-    const Eigen::Vector3d a = q_W_S * (p_S[i] - mean_S);
-    num += a.dot(p_W[i] - mean_W);
-    den += a.squaredNorm();
-  }
-  if (!(den > 0.0) || !(num > 0.0)) throw std::invalid_argument("segment does not move");
-  const double s = num / den;
-  return Sim3(s, q_W_S, mean_W - s * (q_W_S * mean_S));
-}
-
-// Chordal L2 mean of rotations (projection of the summed matrices onto SO(3)).
-Eigen::Quaterniond meanRotation(const std::vector<Eigen::Quaterniond>& rotations) {
-  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
-  for (const auto& q : rotations) sum += q.toRotationMatrix();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(sum, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  return Eigen::Quaterniond(svd.matrixU() * D * svd.matrixV().transpose()).normalized();
-}
-
-}  // namespace
 
 SegmentFit fitSegmentToIns(const std::vector<double>& times, const std::vector<SE3d>& T_S_C,
                            const InsCameraTrack& ins, int min_keyframes) {
@@ -150,7 +112,7 @@ SegmentFit fitSegmentToIns(const std::vector<double>& times, const std::vector<S
         p_W_C[i] = p_W_B[i] + q_W_B[i] * t_B_C;
         q_W_S[i] = q_W_B[i] * q_B_C * q_S_C[i].conjugate();
       }
-      fit.S_W_S = fitScaleTranslation(meanRotation(q_W_S), p_S, p_W_C);
+      fit.S_W_S = alignScaleTranslation(chordalMeanRotation(q_W_S), p_S, p_W_C);
     } else {
       // No attitude: positions alone, lever arm from the fit's own rotation.
       for (std::size_t i = 0; i < p_S.size(); ++i) p_W_C[i] = p_W_B[i];

@@ -66,11 +66,13 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
   }
   report.keyframes = int(used_keyframes.size());
   report.attitude_measured = ins.hasAttitude();
+  report.position_correlation_factor = noise.position_correlation_factor;
   report.landmarks = int(landmark_ids.size());
 
   const NoiseModel pixel_noise = NoiseModel::isotropic(2, options.pixel_sigma_px);
   const RobustLoss huber = RobustLoss::huber(options.huber_sigmas);
   const NoiseModel position_noise = NoiseModel::fromSigmas(
+      noise.position_correlation_factor *
       Eigen::Vector3d(noise.sigma_horizontal_m, noise.sigma_horizontal_m, noise.sigma_depth_m));
   const NoiseModel attitude_noise = NoiseModel::fromSigmas(
       ins.hasAttitude() ? noise.sigma_attitude_rad
@@ -97,7 +99,7 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
     }
     for (std::size_t i = 0; i < links.size(); ++i) {
       if (!active[i]) continue;
-      const InsFixInWorld& fix = ins.fixes()[std::size_t(links[i].fix)];
+      const InsBodyFix& fix = ins.fixes()[std::size_t(links[i].fix)];
       // T_B_K = T_B_C T_C_K: the fix's body pose seen from the keyframe.
       const SE3d T_B_K = T_B_C * links[i].T_K_C.inverse();
       graph.emplace<InsPositionFactor>(X(std::uint64_t(links[i].keyframe)), fix.p_W_B, T_B_K,
@@ -129,7 +131,7 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
         if (j != i && active[j] && whitened[j] > whitened[i]) local_max = false;
       }
       if (!local_max) continue;
-      const InsFixInWorld& fix = ins.fixes()[std::size_t(links[i].fix)];
+      const InsBodyFix& fix = ins.fixes()[std::size_t(links[i].fix)];
       report.rejected.push_back({links[i].fix, fix.line_number, fix.t, offsets[i], "bundle adjustment"});
       rejected_any = true;
     }

@@ -22,7 +22,7 @@
 // the front-end over it is negligible.
 //
 // Faulty fixes. After a solve, every fix's position residual is whitened by
-// its sigmas; a fix beyond `fix_gate_sigmas` (5: a chi-square tail of 1e-5
+// its stated sigmas; a fix beyond `fix_gate_sigmas` (5: a chi-square tail of 1e-5
 // for 3 degrees of freedom) that is also the worst within two fixes either
 // side (its neighbours are pulled by it) is left out and the problem is
 // solved again, for at most `max_fix_rejection_rounds` rounds. Each
@@ -50,8 +50,13 @@ struct InsFixLink {
 };
 
 struct InsNoise {
-  double sigma_horizontal_m = 0.5;
+  double sigma_horizontal_m = 0.5;  // one fix's error, as survey.yaml states it
   double sigma_depth_m = 0.05;
+  // The position factors' sigmas are these times the factor (>= 1): fixes
+  // whose errors are correlated in time count less together
+  // (GeorefOptions::ins_correlation_time_s). The faulty-fix test uses the
+  // sigmas above: it asks whether one fix is far off, not the track.
+  double position_correlation_factor = 1.0;
   Eigen::Vector3d sigma_attitude_rad = Eigen::Vector3d::Constant(1e-3);
   // Without INS attitude: an ROV flies level within a few degrees, and its
   // heading follows its track within a crab angle.
@@ -87,6 +92,7 @@ struct GeorefBundleReport {
   int position_factors = 0;
   int attitude_factors = 0;
   bool attitude_measured = true;  // false: the attitude factors are the assumed priors
+  double position_correlation_factor = 1.0;
   int removed_observations = 0;
   std::vector<RejectedFix> rejected;  // in the bundle adjustment
 };

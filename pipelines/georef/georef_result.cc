@@ -59,6 +59,10 @@ std::string GeorefResult::summary() const {
     out << "  bundle adjustment: " << b.keyframes << " keyframes, " << b.landmarks
         << " landmarks, " << b.reprojection_factors << " reprojections, " << b.position_factors
         << " INS positions";
+    if (b.position_correlation_factor > 1.0) {
+      out << " (sigmas x " << fixed(b.position_correlation_factor, 1)
+          << ": fixes within the INS's correlation time count as one)";
+    }
     out << ", " << b.attitude_factors
         << (b.attitude_measured ? " INS attitudes" : " level, along-track attitude priors");
     out << "; " << b.solves << (b.solves == 1 ? " solve" : " solves") << "\n";

@@ -64,7 +64,7 @@ InsAlignment alignVisionToIns(const CameraTrajectory& vision_F, const InsBodyTra
   // level, along-track attitude when the INS has none).
   std::vector<Eigen::Vector3d> p_W_C;
   for (int fix_index : result.paired_fixes) {
-    const InsFixInWorld& fix = ins.fixes()[std::size_t(fix_index)];
+    const InsBodyFix& fix = ins.fixes()[std::size_t(fix_index)];
     p_W_C.push_back(fix.p_W_B + fix.q_W_B * T_B_C.t);
   }
   RobustAlignment robust;
@@ -82,7 +82,7 @@ InsAlignment alignVisionToIns(const CameraTrajectory& vision_F, const InsBodyTra
   std::vector<Eigen::Quaterniond> q_W_F;
   for (std::size_t k = 0; k < result.paired_fixes.size(); ++k) {
     if (!result.inliers[k]) continue;
-    const InsFixInWorld& fix = ins.fixes()[std::size_t(result.paired_fixes[k])];
+    const InsBodyFix& fix = ins.fixes()[std::size_t(result.paired_fixes[k])];
     q_W_F.push_back(fix.q_W_B * T_B_C.q * T_F_C[k].q.conjugate());
   }
   const Sim3 S = alignScaleTranslation(chordalMeanRotation(q_W_F), selected(p_F_C, result.inliers),

@@ -5,27 +5,19 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/geometry/local_ned_frame.h"
 #include "core/geometry/pose_interpolation.h"
 #include "core/geometry/so3.h"
+#include "core/survey/ins_fixes_in_world.h"
 #include "core/survey/survey.h"
 
 namespace hsmap {
 namespace {
 
-std::vector<InsFixInWorld> fixesInWorld(const Survey& survey) {
-  const LocalNedFrame ned(survey.origin);
-  std::vector<InsFixInWorld> fixes;
-  fixes.reserve(survey.ins.fixes.size());
-  for (const InsFix& fix : survey.ins.fixes) {
-    InsFixInWorld w;
-    w.t = fix.t;
-    w.p_W_B = ned.toNed(GeodeticPoint{fix.lat_deg, fix.lon_deg, fix.depth_m});
-    if (survey.ins.has_attitude) {
-      w.q_W_B = quaternionFromRollPitchHeadingDeg(fix.roll_deg, fix.pitch_deg, fix.heading_deg);
-    }
-    w.line_number = fix.line_number;
-    fixes.push_back(w);
+std::vector<InsBodyFix> bodyFixes(const Survey& survey) {
+  std::vector<InsBodyFix> fixes;
+  for (const InsFixInWorld& fix : insFixesInWorld(survey)) {
+    fixes.push_back({fix.t, fix.p_W_B, fix.q_W_B.value_or(Eigen::Quaterniond::Identity()),
+                     fix.line_number});
   }
   return fixes;
 }
@@ -33,9 +25,9 @@ std::vector<InsFixInWorld> fixesInWorld(const Survey& survey) {
 }  // namespace
 
 InsBodyTrack::InsBodyTrack(const Survey& survey, double heading_window_s)
-    : InsBodyTrack(fixesInWorld(survey), survey.ins.has_attitude, heading_window_s) {}
+    : InsBodyTrack(bodyFixes(survey), survey.ins.has_attitude, heading_window_s) {}
 
-InsBodyTrack::InsBodyTrack(std::vector<InsFixInWorld> fixes, bool has_attitude,
+InsBodyTrack::InsBodyTrack(std::vector<InsBodyFix> fixes, bool has_attitude,
                            double heading_window_s)
     : fixes_(std::move(fixes)), has_attitude_(has_attitude) {
   if (fixes_.empty()) throw std::invalid_argument("InsBodyTrack: no INS fixes");

@@ -25,10 +25,12 @@ namespace hsmap {
 
 struct Survey;
 
-struct InsFixInWorld {
+// A fix in W (core/survey/ins_fixes_in_world.h) with the attitude the
+// track uses: measured, or derived (see above).
+struct InsBodyFix {
   double t = 0.0;
   Eigen::Vector3d p_W_B = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond q_W_B = Eigen::Quaterniond::Identity();  // measured, or derived (see above)
+  Eigen::Quaterniond q_W_B = Eigen::Quaterniond::Identity();
   long long line_number = 0;  // line in ins.csv (0 when not read from a file)
 };
 
@@ -39,10 +41,10 @@ class InsBodyTrack {
   // From fixes already in W; when !has_attitude their q_W_B are replaced by
   // the level, along-track attitude. Throws std::invalid_argument for no
   // fixes or times that do not increase.
-  InsBodyTrack(std::vector<InsFixInWorld> fixes, bool has_attitude, double heading_window_s = 20.0);
+  InsBodyTrack(std::vector<InsBodyFix> fixes, bool has_attitude, double heading_window_s = 20.0);
 
   bool hasAttitude() const { return has_attitude_; }
-  const std::vector<InsFixInWorld>& fixes() const { return fixes_; }
+  const std::vector<InsBodyFix>& fixes() const { return fixes_; }
   bool covers(double t) const;
   double startTime() const { return fixes_.front().t; }
   double endTime() const { return fixes_.back().t; }
@@ -53,7 +55,7 @@ class InsBodyTrack {
  private:
   void deriveAlongTrackAttitude(double heading_window_s);
 
-  std::vector<InsFixInWorld> fixes_;
+  std::vector<InsBodyFix> fixes_;
   std::vector<double> times_;
   bool has_attitude_ = false;
 };

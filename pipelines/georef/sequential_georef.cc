@@ -70,6 +70,17 @@ int segmentAt(const VisionFrames& frames, const FrontendResult& frontend, double
   return frontend.frames[std::size_t(frames.record[j])].segment;
 }
 
+// sqrt(correlation time / median fix interval), at least 1 (georef_options.h).
+double insCorrelationFactor(const InsBodyTrack& ins, double correlation_time_s) {
+  if (!(correlation_time_s > 0.0) || ins.fixes().size() < 2) return 1.0;
+  std::vector<double> intervals;
+  for (std::size_t i = 1; i < ins.fixes().size(); ++i) {
+    intervals.push_back(ins.fixes()[i].t - ins.fixes()[i - 1].t);
+  }
+  std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+  return std::sqrt(std::max(1.0, correlation_time_s / intervals[intervals.size() / 2]));
+}
+
 }  // namespace
 
 GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& frontend,
@@ -96,7 +107,7 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   const InsAlignment& alignment = *result.alignment;
   for (std::size_t k = 0; k < alignment.paired_fixes.size(); ++k) {
     if (alignment.inliers[k]) continue;
-    const InsFixInWorld& fix = ins.fixes()[std::size_t(alignment.paired_fixes[k])];
+    const InsBodyFix& fix = ins.fixes()[std::size_t(alignment.paired_fixes[k])];
     result.rejected_fixes.push_back(
         {alignment.paired_fixes[k], fix.line_number, fix.t, alignment.residuals_m[k], "alignment"});
   }
@@ -127,6 +138,7 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   InsNoise noise;
   noise.sigma_horizontal_m = ins_config.sigma_horizontal_m;
   noise.sigma_depth_m = ins_config.sigma_depth_m;
+  noise.position_correlation_factor = insCorrelationFactor(ins, options.ins_correlation_time_s);
 
   noise.sigma_attitude_rad = Eigen::Vector3d(ins_config.sigma_attitude_deg[0],
                                              ins_config.sigma_attitude_deg[1],

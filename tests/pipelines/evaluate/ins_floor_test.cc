@@ -30,14 +30,14 @@ class InsFloorTest : public ::testing::Test {
   }
 
   // Fixes on the true body at every 4th frame time, plus two outside the span.
-  std::vector<InsFixInW> fixes(double scale, const Eigen::Vector3d& about, bool attitude) const {
-    std::vector<InsFixInW> result;
+  std::vector<InsFixInWorld> fixes(double scale, const Eigen::Vector3d& about, bool attitude) const {
+    std::vector<InsFixInWorld> result;
     std::vector<double> times = {-0.5};
     for (int i = 0; i <= 100; i += 4) times.push_back(i * 0.04);
     times.push_back(4.5);
     for (double t : times) {
       const SE3d T_W_B = bodyPose(t);
-      InsFixInW fix;
+      InsFixInWorld fix;
       fix.t = t;
       fix.p_W_B = about + scale * (T_W_B.t - about);
       if (attitude) fix.q_W_B = T_W_B.q;
@@ -75,7 +75,7 @@ TEST_F(InsFloorTest, FixesScaledAboutAPointGiveThatScaleAndTheMovedFrames) {
 }
 
 TEST_F(InsFloorTest, TooFewFixesInTheFramesSpanLeaveTheFloorMissingWithTheReason) {
-  std::vector<InsFixInW> two = fixes(1.0, Eigen::Vector3d::Zero(), false);
+  std::vector<InsFixInWorld> two = fixes(1.0, Eigen::Vector3d::Zero(), false);
   two.erase(two.begin() + 3, two.end() - 1);  // -0.5, 0, 0.16 and 4.5 s
   const InsFloor floor = computeInsFloor(frames_, two, ins_);
   EXPECT_FALSE(floor.rgb_ate_m.value);

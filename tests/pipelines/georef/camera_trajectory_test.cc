@@ -19,9 +19,9 @@ const SE3d kT_B_C(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d
                   Eigen::Vector3d(0.5, 0.0, 0.3));
 
 InsBodyTrack exactIns(double offset_north_m) {
-  std::vector<InsFixInWorld> fixes;
+  std::vector<InsBodyFix> fixes;
   for (int i = 0; i <= 20; ++i) {
-    InsFixInWorld fix;
+    InsBodyFix fix;
     fix.t = double(i);
     const SE3d T = trueBody(fix.t);
     fix.p_W_B = T.t + Eigen::Vector3d(offset_north_m, 0, 0);

@@ -42,13 +42,13 @@ inline Sim3 trueS_W_F() {
 }
 
 // INS fixes at 1 Hz with white noise; `jumps` adds a displacement to fix i.
-inline std::vector<InsFixInWorld> insFixes(double sigma_h, double sigma_d, unsigned seed,
+inline std::vector<InsBodyFix> insFixes(double sigma_h, double sigma_d, unsigned seed,
                                            const std::vector<std::pair<int, Eigen::Vector3d>>& jumps = {}) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> unit(0.0, 1.0);
-  std::vector<InsFixInWorld> fixes;
+  std::vector<InsBodyFix> fixes;
   for (int i = 0; i <= 30; ++i) {
-    InsFixInWorld fix;
+    InsBodyFix fix;
     fix.t = double(i);
     const SE3d T = trueBody(fix.t);
     fix.p_W_B = T.t + Eigen::Vector3d(sigma_h * unit(rng), sigma_h * unit(rng), sigma_d * unit(rng));

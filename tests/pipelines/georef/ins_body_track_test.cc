@@ -12,12 +12,12 @@ namespace {
 
 // Fixes at 1 Hz along a straight track heading `heading_rad` at 0.4 m/s,
 // with white position noise of `noise_m` per axis.
-std::vector<InsFixInWorld> straightTrack(double heading_rad, double noise_m, int count) {
+std::vector<InsBodyFix> straightTrack(double heading_rad, double noise_m, int count) {
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, noise_m);
-  std::vector<InsFixInWorld> fixes;
+  std::vector<InsBodyFix> fixes;
   for (int i = 0; i < count; ++i) {
-    InsFixInWorld fix;
+    InsBodyFix fix;
     fix.t = 100.0 + i;
     fix.p_W_B = Eigen::Vector3d(0.4 * i * std::cos(heading_rad), 0.4 * i * std::sin(heading_rad), 10.0) +
                 Eigen::Vector3d(noise(rng), noise(rng), 0.0);
@@ -57,7 +57,7 @@ TEST(InsBodyTrack, WithoutAttitudeTheBodyIsLevelAndHeadsAlongTheTrackDespiteFixN
 }
 
 TEST(InsBodyTrack, InterpolatesBetweenFixesAndNeverExtrapolates) {
-  std::vector<InsFixInWorld> fixes(2);
+  std::vector<InsBodyFix> fixes(2);
   fixes[0].t = 10.0;
   fixes[0].p_W_B = Eigen::Vector3d(0, 0, 5);
   fixes[0].q_W_B = Eigen::Quaterniond(Eigen::AngleAxisd(0.0, Eigen::Vector3d::UnitZ()));
