@@ -15,10 +15,14 @@ run="$build_dir/tiny-run"
 "$hsmap" inspect "$survey"
 "$hsmap" run "$survey" --out "$run" --variant sequential --force
 "$hsmap" evaluate "$run" --truth "$survey/truth"
-metric() { sed -nE "s/^ *\"$1\": ([^,]+),?$/\1/p" "$run/metrics.json"; }
+# A metric of metrics.json, scaled and rounded (awk: no extra package).
+metric() {
+  sed -nE "s/^ *\"$1\": ([^,]+),?$/\1/p" "$run/metrics.json" |
+    awk -v scale="$2" -v unit="$3" '{ printf "%.1f %s", $1 * scale, unit }'
+}
 echo
-echo "The run is in $run: trajectory/frames.csv and uhi_lines.csv (every frame and"
-echo "scan line posed in W), map/sparse.ply, calibration.yaml, run.yaml."
-echo "Against the truth ($run/metrics.json): frame positions $(metric rgb_ate_m) m RMS"
-echo "as placed by the INS (the INS alone allows $(metric ins_floor_rgb_ate_m) m), and"
-echo "$(metric rgb_ate_aligned_m) m RMS in shape once aligned."
+echo "The run is in $run: trajectory/frames.csv and uhi_lines.csv (every frame"
+echo "and scan line posed in W), map/sparse.ply, calibration.yaml, run.yaml."
+echo "Scores against the truth ($run/metrics.json): every frame's position to"
+echo "$(metric rgb_ate_m 100 cm) RMS as placed by the INS (the INS alone allows $(metric ins_floor_rgb_ate_m 100 cm)),"
+echo "and the trajectory's shape to $(metric rgb_ate_aligned_m 1000 mm) RMS once aligned."
