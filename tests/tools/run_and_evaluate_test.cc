@@ -9,6 +9,9 @@
 #include <cmath>
 #include <regex>
 
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
 #include "core/io/ply_io.h"
 #include "core/survey/csv_table.h"
 #include "core/survey/pose_tables.h"
@@ -144,6 +147,37 @@ TEST_F(RunAndEvaluate, AFixThatJumpedMetresIsLeftOutAndReportedByItsLine) {
   EXPECT_TRUE(std::regex_search(result.out, std::regex("ins.csv line 14 \\(t = [0-9.]+ s\\): (4\\.[5-9]|5\\.[0-4])[0-9]* m "
                                                        "off the track, found by the alignment")))
       << result.out;
+}
+
+TEST_F(RunAndEvaluate, ATrackingLossIsBridgedByTheInsAndSaysSo) {
+  // Frames 20-33 black: the front-end loses tracking and starts a second
+  // segment; georef bridges the gap with the INS, anchored on both sides.
+  const fs::path survey = temp_ / "blanked";
+  testing::copyFolder(tinySurvey(), survey);
+  const Survey loaded = loadSurvey(survey);
+  const cv::Mat black = cv::Mat::zeros(loaded.config.rgb.camera.height, loaded.config.rgb.camera.width, CV_8UC3);
+  for (int i = 20; i <= 33; ++i) ASSERT_TRUE(cv::imwrite(loaded.rgb.framePath(i).string(), black));
+  const fs::path out = temp_ / "out";
+  const RunResult result = run("sequential", out, survey);
+  ASSERT_EQ(result.exit_status, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("2 segments"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("frames: 44 from vision, 14 bridged by the INS across tracking gaps"),
+            std::string::npos)
+      << result.out;
+  // pose_sources.csv names exactly those frames.
+  const std::string sources = readText(out / "trajectory/pose_sources.csv");
+  for (int i = 0; i < 58; ++i) {
+    const bool blank = i >= 20 && i <= 33;
+    const std::regex row("\\nframe," + std::to_string(i) + ",[^,]+," + (blank ? "ins_bridged" : "vision") + "\\n");
+    EXPECT_TRUE(std::regex_search(sources, row)) << "frame " << i;
+  }
+  // Every frame is still there, and the bridged ones are where the INS puts them.
+  const auto frames = readTimedPoseTable(out / "trajectory/frames.csv");
+  ASSERT_EQ(frames.size(), loaded.rgb.times().size());
+  const RunResult evaluate = runHsmap(temp_, "evaluate " + quoted(out.string()) + " --truth " +
+                                                 quoted((survey / "truth").string()));
+  ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err;
+  EXPECT_LT(metric(readText(out / "metrics.json"), "rgb_ate_m"), 0.2);
 }
 
 TEST_F(RunAndEvaluate, AFailedStageLeavesNoProductAndNoRunYaml) {
