@@ -4,14 +4,14 @@
 #include "core/io/results_folder.h"
 #include "pipelines/evaluate/calibration_metrics.h"
 #include "pipelines/evaluate/ins_floor.h"
+#include "pipelines/evaluate/mesh_metrics.h"
 #include "pipelines/evaluate/trajectory_metrics.h"
 
 namespace hsmap {
 namespace {
 
-// Why the surface and products metrics are null today (the stages that make
-// the mesh and the ortho-image are not in place yet).
-constexpr const char* kNoMeshMetrics = "not measured yet: hsmap has no surface stage";
+// Why the products metrics are null today (the stage that makes the
+// ortho-image is not in place yet).
 constexpr const char* kNoOrthoMetrics = "not measured yet: hsmap has no products stage";
 
 }  // namespace
@@ -41,10 +41,14 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
       MetricValue::of(calibration.extrinsic_translation_error_m);
   metrics.time_offset_error_s = MetricValue::of(calibration.time_offset_error_s);
 
-  for (MetricValue EvaluationMetrics::*mesh :
-       {&EvaluationMetrics::mesh_accuracy_m, &EvaluationMetrics::mesh_completeness}) {
-    metrics.*mesh = MetricValue::missing(kNoMeshMetrics);
-  }
+  // The mesh is judged in the frame the frames' alignment defines; without
+  // that alignment there is no frame to judge it in, for the same reason.
+  const MeshMetrics mesh = measureRunMesh(
+      inputs.run_folder / results_paths::mesh_ply, trajectory.S_true_est,
+      trajectory.rgb_ate_aligned_m.reason, inputs.truth.scene_path,
+      inputs.truth.reflectance_header_path);
+  metrics.mesh_accuracy_m = mesh.mesh_accuracy_m;
+  metrics.mesh_completeness = mesh.mesh_completeness;
   for (MetricValue EvaluationMetrics::*ortho :
        {&EvaluationMetrics::ortho_mean_shift_m, &EvaluationMetrics::ortho_registration_rmse_m,
         &EvaluationMetrics::ortho_scale_error, &EvaluationMetrics::ortho_sam_deg,

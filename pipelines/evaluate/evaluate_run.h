@@ -4,10 +4,12 @@
 //
 // evaluateRun() computes every metric of metrics.json from inputs already
 // loaded and checked (evaluation_inputs.h): trajectory metrics
-// (trajectory_metrics.h), calibration errors (calibration_metrics.h),
-// timings and peak memory from run.yaml, the INS floor (ins_floor.h).
-// Mesh and ortho-image metrics are null, with the reason, until the surface
-// and products stages exist: they will fill their MetricValue fields here.
+// (trajectory_metrics.h), calibration errors (calibration_metrics.h), the
+// mesh metrics when the run has RUN/map/mesh.ply (mesh_metrics.h, with the
+// frames' alignment; the only metrics that read truth/scene.ply and
+// truth/reflectance), timings and peak memory from run.yaml, the INS floor
+// (ins_floor.h). Ortho-image metrics are null, with the reason, until the
+// products stage exists: it will fill their MetricValue fields here.
 //
 // evaluateRunFolder() is the whole command: load, compute, write
 // RUN/metrics.json atomically. It throws InputError for bad input.

@@ -30,9 +30,10 @@ struct EvaluationMetrics {
   MetricValue extrinsic_rotation_error_deg;
   MetricValue extrinsic_translation_error_m;
   MetricValue time_offset_error_s;
-  // Surface and products metrics: filled when those stages exist.
+  // Surface metrics (mesh_metrics.h): measured when the run has RUN/map/mesh.ply.
   MetricValue mesh_accuracy_m;
   MetricValue mesh_completeness;
+  // Products metrics: filled when that stage exists.
   MetricValue ortho_mean_shift_m;
   MetricValue ortho_registration_rmse_m;
   MetricValue ortho_scale_error;

@@ -12,17 +12,24 @@
 //   INS fixes exactly on the body at every 5th frame time (5 Hz), with attitude,
 //   plus one fix before and one after the frames' time span.
 //
-// truth/scene.ply and truth/reflectance.* are placeholders: loadSurveyTruth
-// only checks that they exist, and no metric reads them yet.
-// writeRun() writes a results folder from given trajectories and calibration.
+// truth/scene.ply is a flat seabed at down = kSeabedDown (flatSeabed), and
+// truth/reflectance.* a 200 x 200 raster of 1 cm pixels over north
+// [0.5, 2.5] m, east [-1, 1] m, NaN in its 20 westernmost and 20 easternmost
+// columns: the footprint is north [0.5, 2.5] x east [-0.8, 0.8]
+// (kFootprint*). Only the mesh metrics read them.
+// writeRun() writes a results folder from given trajectories and calibration,
+// writeRunMesh() its map/mesh.ply.
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "core/geometry/local_ned_frame.h"
 #include "core/geometry/so3.h"
+#include "core/io/envi_writer.h"
+#include "core/io/ply_io.h"
 #include "core/survey/csv_table.h"
 #include "core/survey/pose_tables.h"
 #include "core/survey/run_calibration.h"
@@ -43,6 +50,68 @@ inline SE3d trueBodyPose(double t) {
   const Eigen::Quaterniond q_W_B = quaternionFromRollPitchHeadingDeg(
       2.0 * std::sin(1.1 * tau), 1.5 * std::cos(0.6 * tau), 10.0 + 5.0 * std::sin(0.7 * tau));
   return SE3d(q_W_B, p_W_B);
+}
+
+// The true surface and the true ortho-image's footprint (see above).
+constexpr double kSeabedDown = 22.0;
+constexpr double kPixel = 0.01;
+constexpr int kReflectanceRows = 200, kReflectanceCols = 200, kNanColumns = 20;
+constexpr double kReflectanceNorthMax = 2.5, kReflectanceEastMin = -1.0;
+constexpr double kFootprintNorthMin = 0.5, kFootprintNorthMax = 2.5;
+constexpr double kFootprintEastMin = -0.8, kFootprintEastMax = 0.8;
+
+// A flat surface at `down` over [north_min, north_max] x [east_min, east_max]
+// in square cells of `cell` metres, two triangles each.
+inline PlyMesh flatSeabed(double north_min, double north_max, double east_min, double east_max,
+                          double cell, double down) {
+  const int rows = static_cast<int>(std::lround((north_max - north_min) / cell));
+  const int cols = static_cast<int>(std::lround((east_max - east_min) / cell));
+  PlyMesh mesh;
+  for (int i = 0; i <= rows; ++i) {
+    for (int j = 0; j <= cols; ++j) {
+      mesh.vertices.emplace_back(north_min + i * cell, east_min + j * cell, down);
+    }
+  }
+  const auto index = [cols](int i, int j) { return i * (cols + 1) + j; };
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      mesh.triangles.emplace_back(index(i, j), index(i + 1, j), index(i + 1, j + 1));
+      mesh.triangles.emplace_back(index(i, j), index(i + 1, j + 1), index(i, j + 1));
+    }
+  }
+  return mesh;
+}
+
+// The fixture's true surface: wider than the footprint, in 0.25 m cells.
+inline PlyMesh trueSeabed() { return flatSeabed(-1.0, 3.0, -1.5, 1.5, 0.25, kSeabedDown); }
+
+// An ENVI float32 raster in local W (map info Arbitrary, upper-left corner
+// at (north_max, east_min)), 0.5 in every band where valid(row, col), NaN elsewhere.
+template <typename Valid>
+void writeLocalRaster(const std::filesystem::path& hdr, int rows, int cols, int bands,
+                      double north_max, double east_min, double pixel, Valid valid) {
+  EnviHeader header;
+  header.samples = cols;
+  header.lines = rows;
+  header.bands = bands;
+  header.data_type = EnviDataType::float32;
+  header.interleave = EnviInterleave::bil;
+  EnviMapInfo map;
+  map.projection = "Arbitrary";
+  map.easting = east_min;
+  map.northing = north_max;
+  map.pixel_size_x = map.pixel_size_y = pixel;
+  map.units = "Meters";
+  header.map_info = map;
+  EnviWriter writer(hdr, header);
+  Eigen::MatrixXf line(bands, cols);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      line.col(c).setConstant(valid(r, c) ? 0.5f : std::numeric_limits<float>::quiet_NaN());
+    }
+    writer.writeLine(line);
+  }
+  writer.finish();
 }
 
 inline RigidTransformConfig trueExtrinsic() {
@@ -87,7 +156,7 @@ class EvaluationFixture {
   const std::vector<LinePose>& linesTrue() const { return lines_true_; }
   const TruthCalibration& calibrationTrue() const { return calibration_true_; }
 
-  // The truth files (rgb_poses.csv, uhi_poses.csv, calibration.yaml and placeholders).
+  // The truth files (rgb_poses.csv, uhi_poses.csv, calibration.yaml, scene.ply, reflectance.*).
   void writeTruth() const {
     std::filesystem::create_directories(truth());
     std::vector<TruthPose> frames;
@@ -97,9 +166,11 @@ class EvaluationFixture {
     for (const LinePose& pose : lines_true_) lines.push_back({pose.line, pose.t, pose.T});
     writeTruthLinePoses(truth() / "uhi_poses.csv", lines);
     writeTruthCalibration(truth() / "calibration.yaml", calibration_true_);
-    for (const char* name : {"scene.ply", "reflectance.hdr", "reflectance.raw"}) {
-      writeText(truth() / name, "placeholder: no metric reads it yet\n");
-    }
+    writePly(truth() / "scene.ply", trueSeabed());
+    writeLocalRaster(truth() / "reflectance.hdr", kReflectanceRows, kReflectanceCols, 4,
+                     kReflectanceNorthMax, kReflectanceEastMin, kPixel, [](int, int col) {
+                       return col >= kNanColumns && col < kReflectanceCols - kNanColumns;
+                     });
   }
 
   // nav/ins.csv: the true body at every 5th frame time and just outside the
@@ -158,6 +229,11 @@ class EvaluationFixture {
     writeTimedPoseTable(run_ / "trajectory/frames.csv", frames);
     writeLinePoseTable(run_ / "trajectory/uhi_lines.csv", lines);
     writeRunCalibration(run_ / "calibration.yaml", calibration);
+  }
+  // RUN/map/mesh.ply (in the run's W).
+  void writeRunMesh(const PlyMesh& mesh) const {
+    std::filesystem::create_directories(run_ / "map");
+    writePly(run_ / "map/mesh.ply", mesh);
   }
   void writeRunEqualToTruth() const {
     writeRun(frames_true_, lines_true_, calibrationEqualToTruth());

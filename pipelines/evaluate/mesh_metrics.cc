@@ -1,0 +1,138 @@
+#include "pipelines/evaluate/mesh_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "core/raycast/mesh_ray_caster.h"
+#include "core/util/input_error.h"
+#include "pipelines/evaluate/triangle_mesh_distance.h"
+
+namespace hsmap {
+namespace {
+
+// Why the metrics are missing when the run wrote no mesh.
+constexpr const char* kNoMesh = "RUN/map/mesh.ply not found: the run has no surface stage";
+
+// The median (the mean of the two middle values for an even count) of a
+// non-empty list, taken by value because nth_element reorders it.
+double median(std::vector<double> values) {
+  const std::size_t middle = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + middle, values.end());
+  const double upper = values[middle];
+  if (values.size() % 2 == 1) return upper;
+  const double lower = *std::max_element(values.begin(), values.begin() + middle);
+  return 0.5 * (lower + upper);
+}
+
+MeshMetrics bothMissing(const std::string& why) {
+  return {MetricValue::missing(why), MetricValue::missing(why), 0};
+}
+
+}  // namespace
+
+void MeshMetricsOptions::validate() const {
+  if (!std::isfinite(completeness_distance_m) || completeness_distance_m <= 0.0) {
+    throw std::invalid_argument("MeshMetricsOptions: completeness_distance_m must be finite and > 0");
+  }
+  if (max_footprint_samples <= 0) {
+    throw std::invalid_argument("MeshMetricsOptions: max_footprint_samples must be > 0");
+  }
+}
+
+MeshMetrics computeMeshMetrics(const PlyMesh& mesh_est, const Sim3& S_true_est,
+                               const PlyMesh& true_scene,
+                               const std::vector<Eigen::Vector3d>& true_samples_W,
+                               double completeness_distance_m) {
+  if (mesh_est.vertices.empty()) {
+    throw std::invalid_argument("computeMeshMetrics: the produced mesh has no vertices");
+  }
+  MeshMetrics metrics;
+  std::vector<Eigen::Vector3d> vertices_true;
+  vertices_true.reserve(mesh_est.vertices.size());
+  for (const Eigen::Vector3d& v : mesh_est.vertices) vertices_true.push_back(S_true_est.apply(v));
+  {
+    // One tree at a time: a 100 m transect's true scene has millions of
+    // triangles, and its tree is freed before the produced mesh's is built.
+    const TriangleMeshDistance true_surface(true_scene.vertices, true_scene.triangles);
+    metrics.mesh_accuracy_m = MetricValue::of(median(true_surface.distances(vertices_true)));
+  }
+
+  if (mesh_est.triangles.empty()) {
+    metrics.mesh_completeness = MetricValue::missing(
+        "RUN/map/mesh.ply has no triangles: completeness needs a surface, not a point cloud");
+    return metrics;
+  }
+  if (true_samples_W.empty()) {
+    metrics.mesh_completeness = MetricValue::missing(
+        "no true-surface sample: truth/reflectance has no valid pixel over truth/scene.ply");
+    return metrics;
+  }
+  std::optional<TriangleMeshDistance> mesh_true;
+  try {
+    mesh_true.emplace(vertices_true, mesh_est.triangles);
+  } catch (const std::invalid_argument& e) {
+    // Only degenerate triangles: a surface of no area covers nothing, but
+    // saying so beats a 0 that looks like a measurement.
+    metrics.mesh_completeness =
+        MetricValue::missing(std::string("RUN/map/mesh.ply has no surface: ") + e.what());
+    return metrics;
+  }
+  const std::vector<double> distances = mesh_true->distances(true_samples_W);
+  const auto covered = std::count_if(distances.begin(), distances.end(), [&](double d) {
+    return d <= completeness_distance_m;
+  });
+  metrics.mesh_completeness =
+      MetricValue::of(static_cast<double>(covered) / static_cast<double>(distances.size()));
+  return metrics;
+}
+
+MeshMetrics measureRunMesh(const std::filesystem::path& mesh_path,
+                           const std::optional<Sim3>& S_true_est,
+                           const std::string& why_no_alignment,
+                           const std::filesystem::path& scene_path,
+                           const std::filesystem::path& reflectance_hdr,
+                           const MeshMetricsOptions& options) {
+  options.validate();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(mesh_path, error)) return bothMissing(kNoMesh);
+  if (!S_true_est) return bothMissing(why_no_alignment);
+
+  const PlyMesh mesh_est = readPly(mesh_path);
+  if (mesh_est.vertices.empty()) return bothMissing("RUN/map/mesh.ply has no vertices");
+  for (std::size_t i = 0; i < mesh_est.vertices.size(); ++i) {
+    if (!mesh_est.vertices[i].allFinite()) {
+      throw InputError(mesh_path, "vertex " + std::to_string(i),
+                       "not finite: expected finite coordinates in W");
+    }
+  }
+
+  const PlyMesh scene = readPly(scene_path);
+  if (scene.triangles.empty()) {
+    throw InputError(scene_path, "", "has no triangles: expected the true surface as a triangle mesh");
+  }
+  TrueSurfaceSamples samples;
+  try {
+    // Embree's BVH is freed before the distance trees are built (memory).
+    const MeshRayCaster scene_caster(scene.vertices, scene.triangles);
+    samples = sampleTrueSurface(scene_caster, reflectance_hdr, options.max_footprint_samples);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene_path, "", std::string("not a usable true surface: ") + e.what());
+  }
+  MeshMetrics metrics;
+  try {
+    metrics = computeMeshMetrics(mesh_est, *S_true_est, scene, samples.points_W,
+                                 options.completeness_distance_m);
+  } catch (const std::invalid_argument& e) {
+    // Only the true scene can fail here (the produced mesh's vertices are
+    // checked above and its failures become reasons): say which file.
+    throw InputError(scene_path, "", std::string("not a usable true surface: ") + e.what());
+  }
+  metrics.footprint_stride = samples.stride;
+  return metrics;
+}
+
+}  // namespace hsmap
