@@ -189,7 +189,6 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   record.options["until"] = stages[std::size_t(last)];
   record.options["from"] = stages[std::size_t(first)];
 
-  StageTimings timings;
   auto finishStage = [&](const std::string& name, double seconds) {
     record.stages.push_back({name, seconds, peakResidentMemoryMb()});
   };
