@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/geometry/se3.h"
+#include "pipelines/frontend/visual_map.h"
 #include "pipelines/georef/camera_trajectory.h"
 #include "pipelines/georef/georef_bundle_adjuster.h"
 #include "pipelines/georef/ins_alignment.h"
@@ -42,6 +43,9 @@ struct GeorefResult {
   std::vector<GeorefFramePose> frames;
   std::vector<GeorefLinePose> lines;
   std::vector<Eigen::Vector3d> landmarks_W;
+  // sequential: the adjusted map in W (keyframe poses T_W_C, landmarks p_W
+  // and who sees them), for the surface stage.
+  VisualMap map_W;
   SE3d T_C_U;                        // extrinsic used for the lines
   double time_offset_s = 0.0;        // d used for the lines
   std::optional<InsAlignment> alignment;

@@ -198,6 +198,7 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   for (const Landmark& l : map.landmarks()) {
     if (l.valid) result.landmarks_W.push_back(l.p_F);
   }
+  result.map_W = std::move(map);
   if (result.repose.from_keyframe > 0) {
     result.warnings.push_back(std::to_string(result.repose.from_keyframe) +
                               " frames could not be posed by PnP on the adjusted landmarks and "

@@ -218,7 +218,8 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
                                                 quoted(run_folder.string()) + " --until mesh");
   EXPECT_EQ(unknown.exit_status, 1);
   EXPECT_EQ(unknown.err,
-            "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef\n");
+            "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef, "
+            "surface\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

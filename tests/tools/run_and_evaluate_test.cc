@@ -85,7 +85,7 @@ class RunAndEvaluate : public ::testing::Test {
     EXPECT_EQ(record.variant, variant);
     EXPECT_EQ(fs::canonical(record.survey), fs::canonical(tinySurvey()));
     ASSERT_FALSE(record.stages.empty());
-    EXPECT_EQ(record.stages.back().name, "georef");
+    EXPECT_EQ(record.stages.back().name, variant == "planar" ? "georef" : "surface");
     EXPECT_FALSE(fs::exists(out / "georef.partial"));
   }
 };
@@ -100,6 +100,7 @@ TEST_F(RunAndEvaluate, SequentialAndPlanarWriteTheContractAndScoreAsTheyShould) 
   }
   expectContractFiles(sequential, "sequential");
   EXPECT_GT(readPly(sequential / "map/sparse.ply").vertices.size(), 100u);
+  EXPECT_GT(readPly(sequential / "map/mesh.ply").triangles.size(), 100u);  // from the landmarks
 
   const fs::path planar = temp_ / "planar";
   const RunResult pla = run("planar", planar);
@@ -124,7 +125,7 @@ TEST_F(RunAndEvaluate, SequentialAndPlanarWriteTheContractAndScoreAsTheyShould) 
       EXPECT_FALSE(std::isnan(metric(json[v], key))) << key << " missing from\n" << json[v];
     }
     EXPECT_NE(json[v].find("\"timings_s\""), std::string::npos) << json[v];
-    EXPECT_EQ(metric(json[v], "mesh_accuracy_m"), -1.0);  // null: no surface stage yet
+    EXPECT_EQ(metric(json[v], "ortho_coverage"), -1.0);  // null: no products stage yet
     EXPECT_NE(evaluate.out.find("rgb_ate_m"), std::string::npos) << evaluate.out;
   }
   // The shape of the trajectory to millimetres (vision); placed by the INS
@@ -132,6 +133,16 @@ TEST_F(RunAndEvaluate, SequentialAndPlanarWriteTheContractAndScoreAsTheyShould) 
   EXPECT_LT(metric(json[0], "rgb_ate_aligned_m"), 0.01) << json[0];
   EXPECT_LT(metric(json[0], "rgb_ate_m"), metric(json[1], "rgb_ate_m")) << json[0] << json[1];
   EXPECT_GT(metric(json[1], "rgb_ate_aligned_m"), metric(json[0], "rgb_ate_aligned_m"));
+  // The sparse surface is measured; planar has none. On tiny the frames'
+  // alignment (a 0.7 m, nearly straight track) leaves about a degree of roll
+  // about the track, which moves the seabed 1.5 m below by centimetres
+  // (its scan-line rotation error is ~5 degrees for the same reason), so
+  // only a loose bound holds here; on the 20 m presets the sparse mesh is
+  // within 3 mm (docs/BENCHMARKS.md).
+  EXPECT_GE(metric(json[0], "mesh_accuracy_m"), 0.0);
+  EXPECT_LT(metric(json[0], "mesh_accuracy_m"), 0.05) << json[0];
+  EXPECT_GT(metric(json[0], "mesh_completeness"), 0.3) << json[0];
+  EXPECT_EQ(metric(json[1], "mesh_accuracy_m"), -1.0);
 }
 
 TEST_F(RunAndEvaluate, AFixThatJumpedMetresIsLeftOutAndReportedByItsLine) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <ostream>
 
+#include "core/io/ply_io.h"
 #include "core/io/results_folder.h"
 #include "core/survey/run_record.h"
 #include "core/util/input_error.h"
@@ -17,6 +18,8 @@
 #include "pipelines/georef/georef_outputs.h"
 #include "pipelines/georef/planar_georef.h"
 #include "pipelines/georef/sequential_georef.h"
+#include "pipelines/surface/sparse_map_points.h"
+#include "pipelines/surface/surface_reconstruction.h"
 
 namespace hsmap {
 namespace {
@@ -25,7 +28,7 @@ namespace fs = std::filesystem;
 
 // The stages each variant runs, in order.
 const std::vector<std::string>& variantStages(const std::string& variant) {
-  static const std::vector<std::string> sequential = {"frontend", "georef"};
+  static const std::vector<std::string> sequential = {"frontend", "georef", "surface"};
   static const std::vector<std::string> planar = {"georef"};
   return variant == "planar" ? planar : sequential;
 }
@@ -51,6 +54,7 @@ int indexOf(const std::vector<std::string>& names, const std::string& name) {
 // What a stage writes, relative to RUN (removed first under --force).
 std::vector<fs::path> stageProducts(const std::string& stage) {
   if (stage == "frontend") return {"frontend"};
+  if (stage == "surface") return {results_paths::mesh_ply};
   return {"trajectory", "calibration.yaml", "map/sparse.ply", "georef"};
 }
 
@@ -82,8 +86,33 @@ FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options,
   return result;
 }
 
-void runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
-                    const RunOptions& options, std::ostream& out) {
+// The surface from the adjusted sparse map (docs/SURFACE.md): its
+// landmarks, the keyframes that saw them, Delaunay and the visibility cut.
+void runSurfaceStage(const GeorefResult& georef, const RunOptions& options, std::ostream& out) {
+  const VisibilityPoints points = visibilityFromSparseMap(georef.map_W);
+  out << "surface: " << points.p_W.size() << " landmarks seen from " << points.c_W.size()
+      << " keyframes...\n";
+  const SurfaceReconstruction surface = reconstructSurface(points);
+  PlyMesh mesh;
+  mesh.vertices = surface.mesh.vertices;
+  mesh.triangles = surface.mesh.triangles;
+  const fs::path path = options.out / results_paths::mesh_ply;
+  fs::create_directories(path.parent_path());
+  writePly(path, mesh);
+  const SurfaceCutReport& r = surface.report;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "surface (sparse landmarks): %lld points, %lld rays, %lld of %lld cells inside, "
+                "%zu vertices and %zu triangles; Delaunay %.1f s, rays %.1f s, cut %.1f s\n",
+                static_cast<long long>(r.points), static_cast<long long>(r.rays),
+                static_cast<long long>(r.inside_cells), static_cast<long long>(r.cells),
+                mesh.vertices.size(), mesh.triangles.size(), r.seconds_triangulation, r.seconds_rays,
+                r.seconds_cut);
+  out << line << "wrote " << results_paths::mesh_ply << " in " << options.out.string() << "\n";
+}
+
+GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
+                            const RunOptions& options, std::ostream& out) {
   GeorefOptions georef_options;
   GeorefResult result;
   if (options.variant == "planar") {
@@ -107,6 +136,7 @@ void runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& f
   out << "wrote";
   for (const auto& path : georefProductPaths(result)) out << " " << path.string();
   out << " in " << options.out.string() << "\n";
+  return result;
 }
 
 }  // namespace
@@ -115,9 +145,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
   CLI::App* command =
       app.add_subcommand("run", "Run the processing stages on a survey into a run folder");
   command->footer(
-      "Variants and their stages: sequential = frontend, georef; planar = georef (the INS "
-      "alone). Surface, joint estimation and the hyperspectral products follow in later "
-      "versions. Each stage writes its files into RUN under temporary names and moves them "
+      "Variants and their stages: sequential = frontend, georef, surface (from the sparse "
+      "landmarks for now); planar = georef (the INS alone). Dense surface, joint estimation and "
+      "the hyperspectral products follow in later versions. Each stage writes its files into RUN under temporary names and moves them "
       "into place when complete; run.yaml is written last. The files are described in "
       "docs/SURVEY_FORMAT.md.\n"
       "Exit status: 0 on success; 2 when the survey is invalid (one line naming the file and "
@@ -206,6 +236,7 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   for (const auto& warning : survey.warnings) out << "warning: " << warning << "\n";
 
   std::optional<FrontendResult> frontend;
+  std::optional<GeorefResult> georef;
   for (int s = first; s <= last; ++s) {
     const std::string& stage = stages[std::size_t(s)];
     stage_start = std::chrono::steady_clock::now();
@@ -218,7 +249,14 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
               << (options.out / frontend_files::folder).string() << "\n";
           frontend = readFrontendOutputs(options.out);
         }
-        runGeorefStage(survey, frontend, options, out);
+        georef = runGeorefStage(survey, frontend, options, out);
+      } else if (stage == "surface") {
+        if (!georef) {
+          err << "error: the surface stage needs the adjusted map of the georef stage in the same "
+                 "run; start at --from georef\n";
+          return 1;
+        }
+        runSurfaceStage(*georef, options, out);
       }
     } catch (const InputError&) {
       throw;

@@ -4,7 +4,8 @@
 // folder (the data contract's results folder; docs/SURVEY_FORMAT.md):
 //
 //   variant      stages
-//   sequential   frontend (docs/FRONTEND.md), georef (docs/GEOREF.md)
+//   sequential   frontend (docs/FRONTEND.md), georef (docs/GEOREF.md),
+//                surface (docs/SURFACE.md; from the sparse landmarks for now)
 //   planar       georef (the INS alone: no vision)
 //
 // --until names the last stage to run; --from the first (the earlier
