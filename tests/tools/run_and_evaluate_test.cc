@@ -100,7 +100,10 @@ TEST_F(RunAndEvaluate, SequentialAndPlanarWriteTheContractAndScoreAsTheyShould) 
   }
   expectContractFiles(sequential, "sequential");
   EXPECT_GT(readPly(sequential / "map/sparse.ply").vertices.size(), 100u);
-  EXPECT_GT(readPly(sequential / "map/mesh.ply").triangles.size(), 100u);  // from the landmarks
+  const PlyMesh mesh = readPly(sequential / "map/mesh.ply");  // from the landmarks
+  EXPECT_GT(mesh.triangles.size(), 100u);
+  ASSERT_EQ(mesh.colors.size(), mesh.vertices.size());  // RGB from the keyframes
+  EXPECT_NE(seq.out.find("vertex colours from "), std::string::npos) << seq.out;
 
   const fs::path planar = temp_ / "planar";
   const RunResult pla = run("planar", planar);

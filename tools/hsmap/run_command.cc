@@ -20,6 +20,7 @@
 #include "pipelines/georef/sequential_georef.h"
 #include "pipelines/surface/sparse_map_points.h"
 #include "pipelines/surface/surface_reconstruction.h"
+#include "pipelines/surface/vertex_colours.h"
 
 namespace hsmap {
 namespace {
@@ -88,7 +89,8 @@ FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options,
 
 // The surface from the adjusted sparse map (docs/SURFACE.md): its
 // landmarks, the keyframes that saw them, Delaunay and the visibility cut.
-void runSurfaceStage(const GeorefResult& georef, const RunOptions& options, std::ostream& out) {
+void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const RunOptions& options,
+                     std::ostream& out) {
   const VisibilityPoints points = visibilityFromSparseMap(georef.map_W);
   out << "surface: " << points.p_W.size() << " landmarks seen from " << points.c_W.size()
       << " keyframes...\n";
@@ -96,6 +98,9 @@ void runSurfaceStage(const GeorefResult& georef, const RunOptions& options, std:
   PlyMesh mesh;
   mesh.vertices = surface.mesh.vertices;
   mesh.triangles = surface.mesh.triangles;
+  const VertexColours colours = colourVerticesFromKeyframes(
+      surface.mesh, points, georef.map_W, survey.rgb, PinholeRadtanCamera(survey.config.rgb.camera));
+  mesh.colors = colours.rgb;
   const fs::path path = options.out / results_paths::mesh_ply;
   fs::create_directories(path.parent_path());
   writePly(path, mesh);
@@ -108,7 +113,9 @@ void runSurfaceStage(const GeorefResult& georef, const RunOptions& options, std:
                 static_cast<long long>(r.inside_cells), static_cast<long long>(r.cells),
                 mesh.vertices.size(), mesh.triangles.size(), r.seconds_triangulation, r.seconds_rays,
                 r.seconds_cut);
-  out << line << "wrote " << results_paths::mesh_ply << " in " << options.out.string() << "\n";
+  out << line << "  vertex colours from " << colours.images_decoded << " keyframe images";
+  if (colours.uncoloured > 0) out << "; " << colours.uncoloured << " vertices seen by none (grey)";
+  out << "\nwrote " << results_paths::mesh_ply << " in " << options.out.string() << "\n";
 }
 
 GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
@@ -256,7 +263,7 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
                  "run; start at --from georef\n";
           return 1;
         }
-        runSurfaceStage(*georef, options, out);
+        runSurfaceStage(survey, *georef, options, out);
       }
     } catch (const InputError&) {
       throw;
