@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <span>
 #include <atomic>
 #include <cmath>
 #include <mutex>
@@ -11,28 +12,20 @@
 namespace hsmap {
 
 std::vector<Repose> reposeFrames(const std::vector<FrameToRepose>& frames,
-                                 const std::vector<FrameObservation>& observations,
+                                 const FrontendResult& frontend,
                                  const VisualMap& map, const PinholeRadtanCamera& camera,
                                  const PoseEstimatorOptions& options,
                                  const std::function<void(int)>& progress) {
-  // The observations of each frame: [first, last) ranges into `observations`.
-  auto rangeOf = [&](int frame) {
-    const auto first = std::lower_bound(observations.begin(), observations.end(), frame,
-                                        [](const FrameObservation& o, int f) { return o.frame < f; });
-    const auto last = std::upper_bound(first, observations.end(), frame,
-                                       [](int f, const FrameObservation& o) { return f < o.frame; });
-    return std::make_pair(first, last);
-  };
   PoseEstimatorOptions single = options;
   single.solver_threads = 1;
   std::vector<Repose> results(frames.size());
   std::atomic<int> done{0};
   std::mutex progress_mutex;  // the callback need not be thread-safe
   auto poseOne = [&](std::size_t i) {
-    const auto [first, last] = rangeOf(frames[i].frame);
+    const std::span<const FrameObservation> observed = frontend.observationsOfFrame(frames[i].frame);
     std::vector<PoseCorrespondence> correspondences;
-    correspondences.reserve(std::size_t(last - first));
-    for (auto it = first; it != last; ++it) {
+    correspondences.reserve(observed.size());
+    for (auto it = observed.begin(); it != observed.end(); ++it) {
       if (it->landmark < 0 || std::size_t(it->landmark) >= map.landmarks().size()) continue;
       const Landmark& landmark = map.landmark(it->landmark);
       if (!landmark.valid) continue;

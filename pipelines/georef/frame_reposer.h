@@ -32,11 +32,12 @@ struct Repose {
   double rms_px = 0.0;
 };
 
-// One result per entry of `frames`. `observations` sorted by frame (as the
-// front-end writes them); landmarks no longer valid in `map` are skipped.
+// One result per entry of `frames`, from the front-end's observations of
+// each frame (FrontendResult::observationsOfFrame); landmarks no longer
+// valid in `map` are skipped.
 // `progress(done)` is called (serialised, from any worker) as frames finish.
 std::vector<Repose> reposeFrames(const std::vector<FrameToRepose>& frames,
-                                 const std::vector<FrameObservation>& observations,
+                                 const FrontendResult& frontend,
                                  const VisualMap& map, const PinholeRadtanCamera& camera,
                                  const PoseEstimatorOptions& options,
                                  const std::function<void(int)>& progress = {});

@@ -170,7 +170,7 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   }
   const int total = int(to_repose.size());
   const std::vector<Repose> reposed = reposeFrames(
-      to_repose, frontend.frame_observations, map, camera, options.pose,
+      to_repose, frontend, map, camera, options.pose,
       [&](int done) {
         if (progress) progress("frames", done, total);
       });
