@@ -14,7 +14,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config time python3
   libeigen3-dev libceres-dev libsuitesparse-dev
-  libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev
+  libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev libgdal-dev
   libtbb-dev libcli11-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

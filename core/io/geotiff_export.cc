@@ -1,0 +1,348 @@
+#include "core/io/geotiff_export.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal.h>
+#include <gdal_vrt.h>
+#include <ogr_srs_api.h>
+
+#include "core/io/atomic_file.h"
+#include "core/io/envi_header.h"
+#include "core/io/envi_reader.h"
+#include "core/util/input_error.h"
+
+namespace hsmap {
+namespace {
+
+constexpr const char* kExpectedMapInfo =
+    "{UTM, 1, 1, easting, northing, px, px, zone, North|South, WGS-84, units=Meters}";
+
+std::string lowercase(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// `Data  Ignore Value` -> `data ignore value` (ENVI keys are case-insensitive).
+std::string normaliseKey(std::string_view key) {
+  std::string out;
+  for (char c : key) {
+    if (std::isspace(static_cast<unsigned char>(c)) != 0) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+// Shortest text that reads back to the same double (450.2, not 450.199997).
+std::string formatNumber(double value) {
+  std::array<char, 64> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
+
+// The unit symbol for ENVI's `wavelength units` (nm when absent, as in
+// DATASET.md); empty for ENVI's unit-less "Unknown" and "Index".
+std::string wavelengthSymbol(const std::string& units) {
+  const std::string u = lowercase(units);
+  if (u.empty() || u == "nanometers" || u == "nanometer" || u == "nm") return "nm";
+  if (u == "micrometers" || u == "micrometer" || u == "microns" || u == "micron" || u == "um") return "um";
+  if (u == "millimeters" || u == "millimeter" || u == "mm") return "mm";
+  if (u == "unknown" || u == "index") return "";
+  return units;
+}
+
+bool isFloat(EnviDataType type) { return type == EnviDataType::float32 || type == EnviDataType::float64; }
+
+// The checks of the contract on `map info`: UTM on WGS-84 in metres. GDAL's
+// ENVI driver would read a datum-less UTM map info as NAD27, hence the
+// explicit datum test (absent counts as WGS-84: hsmap writes no other).
+const EnviMapInfo& requireUtmMapInfo(const EnviHeader& header, const std::filesystem::path& hdr) {
+  const std::string where = InputError::atKey("map info");
+  const std::string required = "required to export a GeoTIFF: expected " + std::string(kExpectedMapInfo);
+  if (!header.map_info) throw InputError(hdr, where, required + ", found none");
+  const EnviMapInfo& info = *header.map_info;
+  if (lowercase(info.projection) != "utm") {
+    throw InputError(hdr, where, required + ", found projection '" + info.projection + "'");
+  }
+  const std::string datum = lowercase(info.datum);
+  if (!datum.empty() && datum != "wgs-84" && datum != "wgs84" && datum != "wgs 84") {
+    throw InputError(hdr, where, required + ", found datum '" + info.datum + "'");
+  }
+  const std::string units = lowercase(info.units);
+  if (!units.empty() && units != "meters" && units != "meter" && units != "metres" && units != "m") {
+    throw InputError(hdr, where, required + ", found units '" + info.units + "'");
+  }
+  if (!(info.pixel_size_x > 0) || !(info.pixel_size_y > 0)) {
+    throw InputError(hdr, where,
+                     "expected positive pixel sizes, found " + formatNumber(info.pixel_size_x) + " and " +
+                         formatNumber(info.pixel_size_y));
+  }
+  // readEnviHeader already holds a UTM zone to 1..60; kept for headers built in code.
+  if (info.zone < 1 || info.zone > 60) {
+    throw InputError(hdr, where, "expected a UTM zone 1..60, found " + std::to_string(info.zone));
+  }
+  return info;
+}
+
+// `data ignore value`, if the header has one (NaN allowed: it is what hsmap writes).
+std::optional<double> dataIgnoreValue(const EnviHeader& header, const std::filesystem::path& hdr) {
+  for (const auto& [key, value] : header.other_fields) {
+    if (normaliseKey(key) != "data ignore value") continue;
+    const std::string text = value;
+    char* end = nullptr;
+    const double number = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) {
+      throw InputError(hdr, InputError::atKey("data ignore value"),
+                       "expected a number, found '" + text + "'");
+    }
+    return number;
+  }
+  return std::nullopt;
+}
+
+void registerGdalOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+// While alive, GDAL's errors on this thread are collected instead of printed
+// (CPLPushErrorHandlerEx is per thread), and GDAL writes no .aux.xml side
+// files (which would otherwise follow the .partial name, or touch the ENVI
+// folder).
+class GdalErrorCapture {
+ public:
+  GdalErrorCapture() {
+    if (const char* pam = CPLGetThreadLocalConfigOption("GDAL_PAM_ENABLED", nullptr)) previous_pam_ = pam;
+    CPLErrorReset();
+    CPLPushErrorHandlerEx(&GdalErrorCapture::handle, this);
+    CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", "NO");
+  }
+  ~GdalErrorCapture() {
+    CPLSetThreadLocalConfigOption("GDAL_PAM_ENABLED", previous_pam_ ? previous_pam_->c_str() : nullptr);
+    CPLPopErrorHandler();
+  }
+  GdalErrorCapture(const GdalErrorCapture&) = delete;
+  GdalErrorCapture& operator=(const GdalErrorCapture&) = delete;
+
+  bool failed() const { return !messages_.empty(); }
+  // The failures so far, "; "-separated ("unknown GDAL error" when a call
+  // failed without saying why).
+  std::string message() const {
+    std::string out;
+    for (const std::string& m : messages_) out += (out.empty() ? "" : "; ") + m;
+    return out.empty() ? "unknown GDAL error" : out;
+  }
+
+ private:
+  static void CPL_STDCALL handle(CPLErr level, CPLErrorNum, const char* message) {
+    if (level != CE_Failure && level != CE_Fatal) return;  // warnings and debug output are dropped
+    auto* self = static_cast<GdalErrorCapture*>(CPLGetErrorHandlerUserData());
+    const std::string text = message != nullptr ? message : "";
+    if (self->messages_.size() < 8 &&
+        std::find(self->messages_.begin(), self->messages_.end(), text) == self->messages_.end()) {
+      self->messages_.push_back(text);
+    }
+  }
+
+  std::vector<std::string> messages_;
+  std::optional<std::string> previous_pam_;  // the caller's thread-local setting, restored
+};
+
+struct GdalDatasetCloser {
+  void operator()(GDALDatasetH dataset) const {
+    if (dataset != nullptr) GDALClose(dataset);
+  }
+};
+using GdalDataset = std::unique_ptr<std::remove_pointer_t<GDALDatasetH>, GdalDatasetCloser>;
+
+struct SpatialReferenceDeleter {
+  void operator()(OGRSpatialReferenceH srs) const { OSRDestroySpatialReference(srs); }
+};
+
+// WGS 84 / UTM zone `zone` North|South: EPSG:326zz / 327zz, with the EPSG
+// code attached so that readers name the CRS rather than "unnamed".
+std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, SpatialReferenceDeleter> utmSpatialReference(
+    int zone, bool north) {
+  std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, SpatialReferenceDeleter> srs(
+      OSRNewSpatialReference(nullptr));
+  OSRSetAxisMappingStrategy(srs.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  if (OSRImportFromEPSG(srs.get(), (north ? 32600 : 32700) + zone) != OGRERR_NONE) {
+    // Without PROJ's database: the same CRS built from its definition.
+    CPLErrorReset();
+    OSRSetWellKnownGeogCS(srs.get(), "WGS84");
+    OSRSetUTM(srs.get(), zone, north ? TRUE : FALSE);
+    OSRAutoIdentifyEPSG(srs.get());
+  }
+  return srs;
+}
+
+// Removes what GDAL may leave next to `partial` when writing fails half-way
+// (COG keeps its overviews in `<name>.ovr.tmp` until the end).
+void removeGdalLeftovers(const std::filesystem::path& partial) {
+  for (const char* suffix : {".ovr.tmp", ".msk.ovr.tmp", ".aux.xml"}) {
+    std::filesystem::path leftover = partial;
+    leftover += suffix;
+    std::error_code ignored;
+    std::filesystem::remove(leftover, ignored);
+  }
+}
+
+}  // namespace
+
+void GeoTiffExportOptions::validate() const {
+  if (block_size < 16 || block_size > 4096 || block_size % 16 != 0) {
+    throw std::invalid_argument(
+        "GeoTiffExportOptions.block_size must be a multiple of 16 in [16, 4096], got " +
+        std::to_string(block_size));
+  }
+  static const std::vector<std::string> kCodecs = {"DEFLATE", "ZSTD", "LZW", "LZMA", "NONE"};
+  if (std::find(kCodecs.begin(), kCodecs.end(), compression) == kCodecs.end()) {
+    throw std::invalid_argument(
+        "GeoTiffExportOptions.compression must be one of DEFLATE, ZSTD, LZW, LZMA, NONE, got '" +
+        compression + "'");
+  }
+  static const std::vector<std::string> kResamplings = {"NEAREST",     "AVERAGE", "BILINEAR", "CUBIC",
+                                                        "CUBICSPLINE", "LANCZOS", "MODE",     "RMS"};
+  if (std::find(kResamplings.begin(), kResamplings.end(), overview_resampling) == kResamplings.end()) {
+    throw std::invalid_argument(
+        "GeoTiffExportOptions.overview_resampling must be one of NEAREST, AVERAGE, BILINEAR, CUBIC, "
+        "CUBICSPLINE, LANCZOS, MODE, RMS, got '" +
+        overview_resampling + "'");
+  }
+  if (threads < 0) {
+    throw std::invalid_argument("GeoTiffExportOptions.threads must be >= 0 (0: every CPU), got " +
+                                std::to_string(threads));
+  }
+}
+
+void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesystem::path& tif_path,
+                     const GeoTiffExportOptions& options) {
+  options.validate();
+  // hsmap's reader checks the header, finds the data file and checks its
+  // size: GDAL's ENVI driver reads a truncated file as zeros without a word.
+  const EnviReader reader(envi_header);
+  const EnviHeader& header = reader.header();
+  const std::filesystem::path& data_path = reader.dataPath();
+  const EnviMapInfo& map = requireUtmMapInfo(header, envi_header);
+  const std::optional<double> ignore_value = dataIgnoreValue(header, envi_header);
+
+  registerGdalOnce();
+  GdalErrorCapture errors;
+
+  // GDAL's ENVI driver opens the data file (it refuses the .hdr) and finds the
+  // header next to it; the allowed-driver list keeps other raw-file drivers
+  // from claiming a .raw file.
+  const char* const envi_only[] = {"ENVI", nullptr};
+  GdalDataset source(
+      GDALOpenEx(data_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, envi_only, nullptr, nullptr));
+  if (!source) {
+    throw InputError(data_path, "", "GDAL's ENVI driver cannot read it: " + errors.message());
+  }
+  if (GDALGetRasterXSize(source.get()) != header.samples ||
+      GDALGetRasterYSize(source.get()) != header.lines || GDALGetRasterCount(source.get()) != header.bands) {
+    throw InputError(data_path, "",
+                     "GDAL reads " + std::to_string(GDALGetRasterXSize(source.get())) + " x " +
+                         std::to_string(GDALGetRasterYSize(source.get())) + " x " +
+                         std::to_string(GDALGetRasterCount(source.get())) +
+                         " (samples x lines x bands), but " + envi_header.string() + " says " +
+                         std::to_string(header.samples) + " x " + std::to_string(header.lines) + " x " +
+                         std::to_string(header.bands));
+  }
+
+  // A VRT that shows the ENVI bands with hsmap's georeferencing and band text
+  // and nothing else (no ENVI metadata domains carried into the GeoTIFF).
+  GdalDataset vrt(VRTCreate(header.samples, header.lines));
+  const auto srs = utmSpatialReference(map.zone, map.north);
+  GDALSetSpatialRef(vrt.get(), srs.get());
+  double geo_transform[6] = {map.easting - (map.reference_pixel_x - 1.0) * map.pixel_size_x,
+                             map.pixel_size_x,
+                             0.0,
+                             map.northing + (map.reference_pixel_y - 1.0) * map.pixel_size_y,
+                             0.0,
+                             -map.pixel_size_y};
+  GDALSetGeoTransform(vrt.get(), geo_transform);
+  const std::string symbol = wavelengthSymbol(header.wavelength_units);
+  std::optional<double> nodata = ignore_value;
+  if (!nodata && isFloat(header.data_type)) nodata = std::numeric_limits<double>::quiet_NaN();
+
+  for (int b = 0; b < header.bands; ++b) {
+    GDALRasterBandH source_band = GDALGetRasterBand(source.get(), b + 1);
+    VRTAddBand(vrt.get(), GDALGetRasterDataType(source_band), nullptr);
+    GDALRasterBandH band = GDALGetRasterBand(vrt.get(), b + 1);
+    VRTAddSimpleSource(band, source_band, 0, 0, header.samples, header.lines, 0, 0, header.samples,
+                       header.lines, "near", VRT_NODATA_UNSET);
+    if (nodata) GDALSetRasterNoDataValue(band, *nodata);
+    if (!header.wavelength.empty()) {
+      const std::string wavelength = formatNumber(header.wavelength[b]);
+      GDALSetDescription(band, (symbol.empty() ? wavelength : wavelength + " " + symbol).c_str());
+      GDALSetMetadataItem(band, "wavelength", wavelength.c_str(), nullptr);
+      GDALSetMetadataItem(band, "wavelength_units",
+                          (header.wavelength_units.empty() ? "Nanometers" : header.wavelength_units).c_str(),
+                          nullptr);
+    } else if (!header.band_names.empty()) {
+      GDALSetDescription(band, header.band_names[b].c_str());
+    }
+    if (!header.fwhm.empty())
+      GDALSetMetadataItem(band, "fwhm", formatNumber(header.fwhm[b]).c_str(), nullptr);
+  }
+  if (errors.failed()) {
+    throw std::runtime_error("cannot prepare " + tif_path.string() + " from " + data_path.string() + ": " +
+                             errors.message());
+  }
+
+  GDALDriverH cog = GDALGetDriverByName("COG");
+  if (cog == nullptr) {
+    throw std::runtime_error("cannot write " + tif_path.string() +
+                             ": this GDAL has no COG driver (GDAL >= 3.1 needed)");
+  }
+  CPLStringList creation;
+  creation.SetNameValue("COMPRESS", options.compression.c_str());
+  creation.SetNameValue("PREDICTOR", options.predictor && options.compression != "NONE" ? "YES" : "NO");
+  creation.SetNameValue("BLOCKSIZE", std::to_string(options.block_size).c_str());
+  creation.SetNameValue("OVERVIEWS", options.overviews ? "AUTO" : "NONE");
+  creation.SetNameValue("RESAMPLING", options.overview_resampling.c_str());
+  creation.SetNameValue("NUM_THREADS",
+                        options.threads == 0 ? "ALL_CPUS" : std::to_string(options.threads).c_str());
+  // A compressed hyperspectral ortho can pass 4 GB; IF_NEEDED would only see
+  // that for uncompressed data.
+  creation.SetNameValue("BIGTIFF", "IF_SAFER");
+
+  AtomicFile file(tif_path, AtomicFile::Mode::byPath);
+  struct Leftovers {
+    std::filesystem::path partial;
+    ~Leftovers() { removeGdalLeftovers(partial); }
+  } leftovers{file.partialPath()};
+  {
+    GdalDataset written(
+        GDALCreateCopy(cog, file.partialPath().c_str(), vrt.get(), FALSE, creation.List(), nullptr, nullptr));
+    if (!written) {
+      throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
+    }
+  }  // closing flushes the last tiles: failures show in `errors`
+  if (errors.failed()) {
+    throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
+  }
+  file.commit();
+}
+
+}  // namespace hsmap
