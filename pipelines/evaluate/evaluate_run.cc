@@ -5,16 +5,10 @@
 #include "pipelines/evaluate/calibration_metrics.h"
 #include "pipelines/evaluate/ins_floor.h"
 #include "pipelines/evaluate/mesh_metrics.h"
+#include "pipelines/evaluate/ortho_metrics.h"
 #include "pipelines/evaluate/trajectory_metrics.h"
 
 namespace hsmap {
-namespace {
-
-// Why the products metrics are null today (the stage that makes the
-// ortho-image is not in place yet).
-constexpr const char* kNoOrthoMetrics = "not measured yet: hsmap has no products stage";
-
-}  // namespace
 
 EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   EvaluationMetrics metrics;
@@ -33,6 +27,7 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   metrics.rgb_scale_error = trajectory.rgb_scale_error;
   metrics.uhi_position_rmse_m = trajectory.uhi_position_rmse_m;
   metrics.uhi_rotation_rmse_deg = trajectory.uhi_rotation_rmse_deg;
+  metrics.alignment_cross_track_spread_m = trajectory.alignment_cross_track_spread_m;
 
   const CalibrationErrors calibration =
       compareCalibration(inputs.calibration, inputs.truth.calibration);
@@ -43,17 +38,30 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
 
   // The mesh is judged in the frame the frames' alignment defines; without
   // that alignment there is no frame to judge it in, for the same reason.
-  const MeshMetrics mesh = measureRunMesh(
-      inputs.run_folder / results_paths::mesh_ply, trajectory.S_true_est,
-      trajectory.rgb_ate_aligned_m.reason, inputs.truth.scene_path,
-      inputs.truth.reflectance_header_path);
-  metrics.mesh_accuracy_m = mesh.mesh_accuracy_m;
-  metrics.mesh_completeness = mesh.mesh_completeness;
-  for (MetricValue EvaluationMetrics::*ortho :
-       {&EvaluationMetrics::ortho_mean_shift_m, &EvaluationMetrics::ortho_registration_rmse_m,
-        &EvaluationMetrics::ortho_scale_error, &EvaluationMetrics::ortho_sam_deg,
-        &EvaluationMetrics::ortho_coverage}) {
-    metrics.*ortho = MetricValue::missing(kNoOrthoMetrics);
+  // The contract's alignment first, then the attitude-anchored one (extension).
+  const std::vector<MeshMetrics> mesh = measureRunMesh(
+      inputs.run_folder / results_paths::mesh_ply,
+      {{trajectory.S_true_est, trajectory.why_no_alignment},
+       {trajectory.S_true_est_attitude, trajectory.why_no_attitude_alignment}},
+      inputs.truth.scene_path, inputs.truth.reflectance_header_path);
+  metrics.mesh_accuracy_m = mesh[0].mesh_accuracy_m;
+  metrics.mesh_completeness = mesh[0].mesh_completeness;
+  metrics.mesh_accuracy_attitude_aligned_m = mesh[1].mesh_accuracy_m;
+  metrics.mesh_completeness_attitude_aligned = mesh[1].mesh_completeness;
+
+  // The ortho-image as placed (its geo-referencing is one of its metrics),
+  // in the survey's UTM zone through W's origin.
+  const OrthoMetrics ortho =
+      measureRunOrtho(inputs.run_folder / results_paths::ortho_hdr,
+                      inputs.truth.reflectance_header_path, inputs.survey.origin);
+  metrics.ortho_mean_shift_m = ortho.ortho_mean_shift_m;
+  metrics.ortho_registration_rmse_m = ortho.ortho_registration_rmse_m;
+  metrics.ortho_scale_error = ortho.ortho_scale_error;
+  metrics.ortho_sam_deg = ortho.ortho_sam_deg;
+  metrics.ortho_coverage = ortho.ortho_coverage;
+  if (ortho.patch_pixels > 0) {  // measured
+    const std::string summary = ortho.summary();
+    metrics.ortho_patches = summary.substr(0, summary.find('\n'));
   }
 
   for (const StageRecord& stage : inputs.run.stages) {

@@ -6,10 +6,12 @@
 // loaded and checked (evaluation_inputs.h): trajectory metrics
 // (trajectory_metrics.h), calibration errors (calibration_metrics.h), the
 // mesh metrics when the run has RUN/map/mesh.ply (mesh_metrics.h, with the
-// frames' alignment; the only metrics that read truth/scene.ply and
-// truth/reflectance), timings and peak memory from run.yaml, the INS floor
-// (ins_floor.h). Ortho-image metrics are null, with the reason, until the
-// products stage exists: it will fill their MetricValue fields here.
+// frames' alignment and, as an extension, with the attitude-anchored one),
+// the ortho-image metrics when the run has RUN/hyperspectral/ortho.hdr
+// (ortho_metrics.h, against truth/reflectance.hdr, in the UTM zone of the
+// survey origin); these two are the only ones that read truth/scene.ply and
+// truth/reflectance. Then timings and peak memory from run.yaml and the INS
+// floor (ins_floor.h).
 //
 // evaluateRunFolder() is the whole command: load, compute, write
 // RUN/metrics.json atomically. It throws InputError for bad input.

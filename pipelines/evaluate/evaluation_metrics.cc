@@ -54,7 +54,7 @@ std::string padded(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
 
-constexpr std::size_t kKeyWidth = 32;
+constexpr std::size_t kKeyWidth = 36;
 constexpr std::size_t kValueWidth = 14;
 constexpr std::size_t kUnitWidth = 6;
 constexpr std::size_t kFloorWidth = 14;
@@ -67,6 +67,22 @@ const MetricValue* floorBeside(const M& metrics, const std::string& key) {
 }
 
 bool isFloorRow(const std::string& key) { return key.rfind("ins_floor_", 0) == 0; }
+
+// Extension rows the table shows right under mesh_completeness, beside the
+// contract's mesh rows they qualify.
+bool isShownUnderMesh(const std::string& key) {
+  return key == "alignment_cross_track_spread_m" || key == "mesh_accuracy_attitude_aligned_m" ||
+         key == "mesh_completeness_attitude_aligned";
+}
+
+// A note on a row that has a value.
+std::string noteOn(const M& metrics, const std::string& key) {
+  if (key == "alignment_cross_track_spread_m" && metrics.alignment_cross_track_spread_m.value &&
+      *metrics.alignment_cross_track_spread_m.value < kWeakRollCrossTrackSpreadM) {
+    return "positions alone leave the roll about the track weakly determined";
+  }
+  return "";
+}
 
 std::string trimmedRight(std::string text) {
   while (!text.empty() && text.back() == ' ') text.pop_back();
@@ -95,6 +111,9 @@ const std::vector<MetricRow>& metricRows() {
       {"peak_rss_mb", "MiB", &M::peak_rss_mb},
       {"ins_floor_rgb_ate_m", "m", &M::ins_floor_rgb_ate_m},
       {"ins_floor_scale_error", "", &M::ins_floor_scale_error},
+      {"alignment_cross_track_spread_m", "m", &M::alignment_cross_track_spread_m},
+      {"mesh_accuracy_attitude_aligned_m", "m", &M::mesh_accuracy_attitude_aligned_m},
+      {"mesh_completeness_attitude_aligned", "", &M::mesh_completeness_attitude_aligned},
   };
   return rows;
 }
@@ -120,20 +139,12 @@ void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics) {
   out << trimmedRight(padded("metric", kKeyWidth) + padded("value", kValueWidth) +
                       padded("unit", kUnitWidth) + "INS floor")
       << "\n";
-  for (const MetricRow& row : metricRows()) {
+  const auto printRow = [&](const MetricRow& row) {
     const std::string key = row.key;
-    if (isFloorRow(key)) continue;  // shown beside rgb_ate_m and rgb_scale_error
-    if (key == "peak_rss_mb") {
-      for (const auto& [stage, seconds] : metrics.timings_s) {
-        out << trimmedRight(padded("timings_s." + stage, kKeyWidth) +
-                            padded(tableNumber(seconds), kValueWidth) + "s")
-            << "\n";
-      }
-    }
     const MetricValue& value = metrics.*row.value;
     std::string line = padded(key, kKeyWidth) + padded(tableValue(value), kValueWidth) +
                        padded(row.unit, kUnitWidth);
-    std::string notes = value.value ? "" : value.reason;
+    std::string notes = value.value ? noteOn(metrics, key) : value.reason;
     if (const MetricValue* floor = floorBeside(metrics, key)) {
       line += padded(tableValue(*floor), kFloorWidth);
       if (!floor->value) notes += (notes.empty() ? "INS floor: " : "; INS floor: ") + floor->reason;
@@ -141,6 +152,27 @@ void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics) {
       line += std::string(kFloorWidth, ' ');
     }
     out << trimmedRight(line + notes) << "\n";
+  };
+  for (const MetricRow& row : metricRows()) {
+    const std::string key = row.key;
+    if (isFloorRow(key)) continue;        // shown beside rgb_ate_m and rgb_scale_error
+    if (isShownUnderMesh(key)) continue;  // shown under mesh_completeness
+    if (key == "peak_rss_mb") {
+      for (const auto& [stage, seconds] : metrics.timings_s) {
+        out << trimmedRight(padded("timings_s." + stage, kKeyWidth) +
+                            padded(tableNumber(seconds), kValueWidth) + "s")
+            << "\n";
+      }
+    }
+    printRow(row);
+    if (key == "mesh_completeness") {
+      for (const MetricRow& under : metricRows()) {
+        if (isShownUnderMesh(under.key)) printRow(under);
+      }
+    }
+    if (key == "ortho_coverage" && !metrics.ortho_patches.empty()) {
+      out << "  " << metrics.ortho_patches << "\n";
+    }
   }
 }
 

@@ -1,12 +1,16 @@
 #pragma once
 // EvaluationMetrics: the figures of RUN/metrics.json (DATASET.md's keys, in
-// its order, plus the INS-floor extension), and their two renderings:
+// its order, plus hsmap's extensions: the INS floor, the attitude-aligned
+// mesh metrics and the frames' cross-track spread), and their two renderings:
 //   - metricsJson(): the file. Every key present, `null` where a metric does
 //     not apply, numbers in shortest round-trip form (number_text.h), so a
 //     script reads back exactly what was computed;
 //   - printMetricsTable(): the same figures for people: metric, value, unit,
-//     the INS floor beside rgb_ate_m and rgb_scale_error, and the reason of
-//     every missing value.
+//     the INS floor beside rgb_ate_m and rgb_scale_error, the attitude-aligned
+//     mesh rows and the cross-track spread under the mesh rows (with a note
+//     when the spread leaves the contract's alignment weakly conditioned),
+//     the ortho-image's patch counts under its rows, and the reason of every
+//     missing value.
 //
 // metricRows() lists the scalar metrics once, so the file, the table and any
 // later metric cannot disagree on keys, order or units.
@@ -33,19 +37,36 @@ struct EvaluationMetrics {
   // Surface metrics (mesh_metrics.h): measured when the run has RUN/map/mesh.ply.
   MetricValue mesh_accuracy_m;
   MetricValue mesh_completeness;
-  // Products metrics: filled when that stage exists.
+  // Ortho-image metrics (ortho_metrics.h): measured when the run has
+  // RUN/hyperspectral/ortho.hdr.
   MetricValue ortho_mean_shift_m;
   MetricValue ortho_registration_rmse_m;
   MetricValue ortho_scale_error;
   MetricValue ortho_sam_deg;
   MetricValue ortho_coverage;
+  // For the table only (not in metrics.json): the ortho-image's patch counts
+  // (OrthoMetrics::summary()'s first line), empty when it was not measured.
+  std::string ortho_patches;
   // Stage name -> wall time (s), in the order the stages ran, then "total".
   std::vector<std::pair<std::string, double>> timings_s;
   MetricValue peak_rss_mb;
   // Extension (docs/EVALUATE.md, "INS floor"): what the INS alone allows.
   MetricValue ins_floor_rgb_ate_m;
   MetricValue ins_floor_scale_error;
+  // Extension (docs/EVALUATE.md, "The attitude-aligned mesh metrics"): the
+  // std of the true frame positions across the track's main direction, and
+  // the mesh metrics with the mesh mapped by the attitude-anchored alignment
+  // (trajectory_metrics.h).
+  MetricValue alignment_cross_track_spread_m;
+  MetricValue mesh_accuracy_attitude_aligned_m;
+  MetricValue mesh_completeness_attitude_aligned;
 };
+
+// Below this cross-track spread of the frames (m) the table says that the
+// positions alone leave the roll about the track weakly determined: with
+// millimetres of position error over hundreds of frames, Umeyama's roll is
+// then off by ~0.1 degree or more, millimetres at a seabed a metre aside.
+inline constexpr double kWeakRollCrossTrackSpreadM = 0.05;
 
 // One scalar metric: its JSON key, unit ("m", "deg", "s", "MiB", "" for a
 // ratio) and where it lives.
@@ -54,7 +75,8 @@ struct MetricRow {
   const char* unit;
   MetricValue EvaluationMetrics::*value;
 };
-// In metrics.json's order; timings_s goes between ortho_coverage and peak_rss_mb.
+// In metrics.json's order; timings_s goes between ortho_coverage and
+// peak_rss_mb; the extensions follow peak_rss_mb.
 const std::vector<MetricRow>& metricRows();
 
 std::string metricsJson(const EvaluationMetrics& metrics);

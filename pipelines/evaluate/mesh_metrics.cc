@@ -43,66 +43,88 @@ void MeshMetricsOptions::validate() const {
   }
 }
 
-MeshMetrics computeMeshMetrics(const PlyMesh& mesh_est, const Sim3& S_true_est,
-                               const PlyMesh& true_scene,
-                               const std::vector<Eigen::Vector3d>& true_samples_W,
-                               double completeness_distance_m) {
+std::vector<MeshMetrics> computeMeshMetrics(const PlyMesh& mesh_est,
+                                            const std::vector<Sim3>& alignments,
+                                            const PlyMesh& true_scene,
+                                            const std::vector<Eigen::Vector3d>& true_samples_W,
+                                            double completeness_distance_m) {
   if (mesh_est.vertices.empty()) {
     throw std::invalid_argument("computeMeshMetrics: the produced mesh has no vertices");
   }
-  MeshMetrics metrics;
-  std::vector<Eigen::Vector3d> vertices_true;
-  vertices_true.reserve(mesh_est.vertices.size());
-  for (const Eigen::Vector3d& v : mesh_est.vertices) vertices_true.push_back(S_true_est.apply(v));
+  std::vector<MeshMetrics> metrics(alignments.size());
+  const auto mapped = [&](const Sim3& S_true_est) {
+    std::vector<Eigen::Vector3d> vertices_true;
+    vertices_true.reserve(mesh_est.vertices.size());
+    for (const Eigen::Vector3d& v : mesh_est.vertices) vertices_true.push_back(S_true_est.apply(v));
+    return vertices_true;
+  };
   {
     // One tree at a time: a 100 m transect's true scene has millions of
-    // triangles, and its tree is freed before the produced mesh's is built.
+    // triangles, and its tree is freed before a produced mesh's is built.
     const TriangleMeshDistance true_surface(true_scene.vertices, true_scene.triangles);
-    metrics.mesh_accuracy_m = MetricValue::of(median(true_surface.distances(vertices_true)));
+    for (std::size_t a = 0; a < alignments.size(); ++a) {
+      metrics[a].mesh_accuracy_m =
+          MetricValue::of(median(true_surface.distances(mapped(alignments[a]))));
+    }
   }
 
-  if (mesh_est.triangles.empty()) {
-    metrics.mesh_completeness = MetricValue::missing(
-        "RUN/map/mesh.ply has no triangles: completeness needs a surface, not a point cloud");
-    return metrics;
+  for (std::size_t a = 0; a < alignments.size(); ++a) {
+    MeshMetrics& out = metrics[a];
+    if (mesh_est.triangles.empty()) {
+      out.mesh_completeness = MetricValue::missing(
+          "RUN/map/mesh.ply has no triangles: completeness needs a surface, not a point cloud");
+      continue;
+    }
+    if (true_samples_W.empty()) {
+      out.mesh_completeness = MetricValue::missing(
+          "no true-surface sample: truth/reflectance has no valid pixel over truth/scene.ply");
+      continue;
+    }
+    std::optional<TriangleMeshDistance> mesh_true;
+    try {
+      mesh_true.emplace(mapped(alignments[a]), mesh_est.triangles);
+    } catch (const std::invalid_argument& e) {
+      // Only degenerate triangles: a surface of no area covers nothing, but
+      // saying so beats a 0 that looks like a measurement.
+      out.mesh_completeness =
+          MetricValue::missing(std::string("RUN/map/mesh.ply has no surface: ") + e.what());
+      continue;
+    }
+    const std::vector<double> distances = mesh_true->distances(true_samples_W);
+    const auto covered = std::count_if(distances.begin(), distances.end(), [&](double d) {
+      return d <= completeness_distance_m;
+    });
+    out.mesh_completeness =
+        MetricValue::of(static_cast<double>(covered) / static_cast<double>(distances.size()));
   }
-  if (true_samples_W.empty()) {
-    metrics.mesh_completeness = MetricValue::missing(
-        "no true-surface sample: truth/reflectance has no valid pixel over truth/scene.ply");
-    return metrics;
-  }
-  std::optional<TriangleMeshDistance> mesh_true;
-  try {
-    mesh_true.emplace(vertices_true, mesh_est.triangles);
-  } catch (const std::invalid_argument& e) {
-    // Only degenerate triangles: a surface of no area covers nothing, but
-    // saying so beats a 0 that looks like a measurement.
-    metrics.mesh_completeness =
-        MetricValue::missing(std::string("RUN/map/mesh.ply has no surface: ") + e.what());
-    return metrics;
-  }
-  const std::vector<double> distances = mesh_true->distances(true_samples_W);
-  const auto covered = std::count_if(distances.begin(), distances.end(), [&](double d) {
-    return d <= completeness_distance_m;
-  });
-  metrics.mesh_completeness =
-      MetricValue::of(static_cast<double>(covered) / static_cast<double>(distances.size()));
   return metrics;
 }
 
-MeshMetrics measureRunMesh(const std::filesystem::path& mesh_path,
-                           const std::optional<Sim3>& S_true_est,
-                           const std::string& why_no_alignment,
-                           const std::filesystem::path& scene_path,
-                           const std::filesystem::path& reflectance_hdr,
-                           const MeshMetricsOptions& options) {
+std::vector<MeshMetrics> measureRunMesh(const std::filesystem::path& mesh_path,
+                                        const std::vector<MeshAlignment>& alignments,
+                                        const std::filesystem::path& scene_path,
+                                        const std::filesystem::path& reflectance_hdr,
+                                        const MeshMetricsOptions& options) {
   options.validate();
+  std::vector<MeshMetrics> metrics;
   std::error_code error;
-  if (!std::filesystem::is_regular_file(mesh_path, error)) return bothMissing(kNoMesh);
-  if (!S_true_est) return bothMissing(why_no_alignment);
+  if (!std::filesystem::is_regular_file(mesh_path, error)) {
+    for (std::size_t a = 0; a < alignments.size(); ++a) metrics.push_back(bothMissing(kNoMesh));
+    return metrics;
+  }
+  // The alignments that exist, measured together; the others say why not.
+  std::vector<Sim3> measurable;
+  for (const MeshAlignment& alignment : alignments) {
+    metrics.push_back(bothMissing(alignment.why_missing));
+    if (alignment.S_true_est) measurable.push_back(*alignment.S_true_est);
+  }
+  if (measurable.empty()) return metrics;
 
   const PlyMesh mesh_est = readPly(mesh_path);
-  if (mesh_est.vertices.empty()) return bothMissing("RUN/map/mesh.ply has no vertices");
+  if (mesh_est.vertices.empty()) {
+    for (MeshMetrics& m : metrics) m = bothMissing("RUN/map/mesh.ply has no vertices");
+    return metrics;
+  }
   for (std::size_t i = 0; i < mesh_est.vertices.size(); ++i) {
     if (!mesh_est.vertices[i].allFinite()) {
       throw InputError(mesh_path, "vertex " + std::to_string(i),
@@ -122,16 +144,21 @@ MeshMetrics measureRunMesh(const std::filesystem::path& mesh_path,
   } catch (const std::invalid_argument& e) {
     throw InputError(scene_path, "", std::string("not a usable true surface: ") + e.what());
   }
-  MeshMetrics metrics;
+  std::vector<MeshMetrics> measured;
   try {
-    metrics = computeMeshMetrics(mesh_est, *S_true_est, scene, samples.points_W,
-                                 options.completeness_distance_m);
+    measured = computeMeshMetrics(mesh_est, measurable, scene, samples.points_W,
+                                  options.completeness_distance_m);
   } catch (const std::invalid_argument& e) {
     // Only the true scene can fail here (the produced mesh's vertices are
     // checked above and its failures become reasons): say which file.
     throw InputError(scene_path, "", std::string("not a usable true surface: ") + e.what());
   }
-  metrics.footprint_stride = samples.stride;
+  std::size_t next = 0;
+  for (std::size_t a = 0; a < alignments.size(); ++a) {
+    if (!alignments[a].S_true_est) continue;
+    metrics[a] = measured[next++];
+    metrics[a].footprint_stride = samples.stride;
+  }
   return metrics;
 }
 

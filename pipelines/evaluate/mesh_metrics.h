@@ -24,6 +24,13 @@
 // measureRunMesh() is the whole measurement on a run's files; a metric that
 // cannot be measured is missing with the reason (no mesh.ply, no alignment,
 // a mesh without vertices or triangles, an empty footprint).
+//
+// Several alignments at once. evaluate measures the mesh under the frames'
+// Umeyama similarity (the contract's keys) and under the attitude-anchored
+// one (trajectory_metrics.h; the extension keys *_attitude_aligned). The
+// files are read, the true surface sampled and its distance tree built once;
+// what is repeated per alignment is mapping the vertices, querying them, and
+// building and querying the mapped mesh's tree.
 
 #include <cstdint>
 #include <filesystem>
@@ -58,27 +65,36 @@ struct MeshMetrics {
   int footprint_stride = 0;  // lattice stride of the samples (0 when not sampled)
 };
 
-// On loaded data. `true_scene` is truth/scene.ply in the truth's W,
-// `true_samples_W` the footprint samples. The distance trees of the true
-// scene and of the mapped mesh are built one after the other, never both at
-// once (a 100 m transect's scene has millions of triangles). Throws
-// std::invalid_argument when the mesh has no vertices or the true scene no
-// triangle with an area (TriangleMeshDistance).
-MeshMetrics computeMeshMetrics(const PlyMesh& mesh_est, const Sim3& S_true_est,
-                               const PlyMesh& true_scene,
-                               const std::vector<Eigen::Vector3d>& true_samples_W,
-                               double completeness_distance_m);
+// One way of placing the produced mesh in the truth's W: the similarity
+// S_true_est, or the reason there is none.
+struct MeshAlignment {
+  std::optional<Sim3> S_true_est;
+  std::string why_missing;  // used when S_true_est is absent
+};
 
-// On a run's files. `S_true_est` is the frames' alignment; when it is absent
-// both metrics are missing with `why_no_alignment`. Reads the true scene and
-// reflectance only when mesh_path exists. Throws InputError for a malformed
-// mesh.ply (readPly), a non-finite vertex, a true scene without triangles or
-// a reflectance raster without a local map info.
-MeshMetrics measureRunMesh(const std::filesystem::path& mesh_path,
-                           const std::optional<Sim3>& S_true_est,
-                           const std::string& why_no_alignment,
-                           const std::filesystem::path& scene_path,
-                           const std::filesystem::path& reflectance_hdr,
-                           const MeshMetricsOptions& options = {});
+// On loaded data, one MeshMetrics per alignment (in their order).
+// `true_scene` is truth/scene.ply in the truth's W, `true_samples_W` the
+// footprint samples. The distance trees of the true scene and of each mapped
+// mesh are built one after the other, never two at once (a 100 m transect's
+// scene has millions of triangles). Throws std::invalid_argument when the
+// mesh has no vertices or the true scene no triangle with an area
+// (TriangleMeshDistance).
+std::vector<MeshMetrics> computeMeshMetrics(const PlyMesh& mesh_est,
+                                            const std::vector<Sim3>& alignments,
+                                            const PlyMesh& true_scene,
+                                            const std::vector<Eigen::Vector3d>& true_samples_W,
+                                            double completeness_distance_m);
+
+// On a run's files, one MeshMetrics per alignment (in their order); an
+// alignment without a similarity gives both metrics missing with its reason.
+// Reads the true scene and reflectance only when mesh_path exists and some
+// alignment has a similarity. Throws InputError for a malformed mesh.ply
+// (readPly), a non-finite vertex, a true scene without triangles or a
+// reflectance raster without a local map info.
+std::vector<MeshMetrics> measureRunMesh(const std::filesystem::path& mesh_path,
+                                        const std::vector<MeshAlignment>& alignments,
+                                        const std::filesystem::path& scene_path,
+                                        const std::filesystem::path& reflectance_hdr,
+                                        const MeshMetricsOptions& options = {});
 
 }  // namespace hsmap

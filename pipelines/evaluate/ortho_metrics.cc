@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -635,6 +636,25 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
                        : MetricValue::missing("no covered pixel with a full, non-zero spectrum in both");
   }
   return metrics;
+}
+
+OrthoMetrics measureRunOrtho(const std::filesystem::path& produced_hdr,
+                             const std::filesystem::path& truth_hdr, const GeodeticPoint& origin,
+                             const OrthoMetricsOptions& options) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(produced_hdr, error)) {
+    OrthoMetrics metrics;
+    metrics.ortho_mean_shift_m = metrics.ortho_registration_rmse_m = metrics.ortho_scale_error =
+        metrics.ortho_sam_deg = metrics.ortho_coverage = MetricValue::missing(kNoOrthoImage);
+    return metrics;
+  }
+  if (!std::filesystem::is_regular_file(truth_hdr, error)) {
+    throw InputError(truth_hdr, "",
+                     "missing: expected the true reflectance ortho-image (ENVI, "
+                     "docs/SURVEY_FORMAT.md) to measure " +
+                         produced_hdr.string() + " against");
+  }
+  return measureOrtho(produced_hdr, truth_hdr, origin, options);
 }
 
 }  // namespace hsmap

@@ -185,4 +185,17 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
                           const std::filesystem::path& truth_hdr, const GeodeticPoint& origin,
                           const OrthoMetricsOptions& options = {});
 
+// Why the five metrics are missing when the run wrote no ortho-image.
+inline constexpr const char* kNoOrthoImage =
+    "RUN/hyperspectral/ortho.hdr not found: the run has no products stage";
+
+// On a run's files (evaluate): measureOrtho(produced_hdr, truth_hdr, origin)
+// when produced_hdr (RUN/hyperspectral/ortho.hdr) exists; otherwise the five
+// metrics are missing with kNoOrthoImage and nothing is read. Throws
+// InputError naming truth_hdr (SURVEY/truth/reflectance.hdr) when the
+// ortho-image exists but the true one does not, and what measureOrtho throws.
+OrthoMetrics measureRunOrtho(const std::filesystem::path& produced_hdr,
+                             const std::filesystem::path& truth_hdr, const GeodeticPoint& origin,
+                             const OrthoMetricsOptions& options = {});
+
 }  // namespace hsmap

@@ -1,8 +1,12 @@
 #include "pipelines/evaluate/trajectory_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
+#include "core/geometry/rotation_anchored_alignment.h"
 #include "core/geometry/so3.h"
 
 namespace hsmap {
@@ -18,6 +22,36 @@ double rotationAngleDeg(const Eigen::Quaterniond& q_a, const Eigen::Quaterniond&
   // logSO3 picks the representative with w >= 0, so the angle is in [0, pi]
   // whatever the signs of the two quaternions.
   return logSO3(Eigen::Quaterniond(q_a.conjugate() * q_b)).norm() * so3_detail::kRadToDeg;
+}
+
+Sim3 alignFramesByAttitude(const std::vector<TimedPose>& frames_est,
+                           const std::vector<TimedPose>& frames_true) {
+  if (frames_est.size() != frames_true.size()) {
+    throw std::invalid_argument("alignFramesByAttitude: expected as many estimated as true frames");
+  }
+  std::vector<Eigen::Quaterniond> q_true_est;
+  std::vector<Eigen::Vector3d> p_est;
+  std::vector<Eigen::Vector3d> p_true;
+  for (std::size_t i = 0; i < frames_est.size(); ++i) {
+    // R_true R_est^T maps the run's W onto the truth's as frame i sees it.
+    q_true_est.push_back(frames_true[i].T.q * frames_est[i].T.q.conjugate());
+    p_est.push_back(frames_est[i].T.t);
+    p_true.push_back(frames_true[i].T.t);
+  }
+  return alignScaleTranslation(chordalMeanRotation(q_true_est), p_est, p_true);
+}
+
+double crossTrackSpread(const std::vector<Eigen::Vector3d>& positions) {
+  if (positions.size() < 2) return 0.0;
+  const double n = static_cast<double>(positions.size());
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : positions) mean += p / n;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : positions) covariance += (p - mean) * (p - mean).transpose() / n;
+  // Ascending eigenvalues: the middle one is the variance across the main
+  // direction (clamped: rounding can make a zero eigenvalue slightly negative).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, eigen.eigenvalues()(1)));
 }
 
 TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_est,
@@ -41,11 +75,20 @@ TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_
   }
   metrics.rgb_ate_m = MetricValue::of(rms(sum, p_est.size()));
 
+  metrics.alignment_cross_track_spread_m = MetricValue::of(crossTrackSpread(p_true));
+  try {
+    metrics.S_true_est_attitude = alignFramesByAttitude(frames_est, frames_true);
+  } catch (const std::invalid_argument& e) {
+    metrics.why_no_attitude_alignment =
+        std::string("no attitude-anchored alignment of the frames: ") + e.what();
+  }
+
   try {
     metrics.S_true_est = alignUmeyama(p_est, p_true);
   } catch (const std::invalid_argument& e) {
     const std::string why =
         std::string("no similarity alignment of the frame positions: ") + e.what();
+    metrics.why_no_alignment = why;
     metrics.rgb_ate_aligned_m = MetricValue::missing(why);
     metrics.rgb_scale_error = MetricValue::missing(why);
     metrics.uhi_position_rmse_m = MetricValue::missing(why);

@@ -16,9 +16,31 @@
 // When the estimated frame positions are degenerate (all equal, or on one
 // line to within rounding) the similarity is undetermined: the four
 // alignment metrics are then missing, with alignUmeyama's reason.
+//
+// Attitude-anchored alignment (an hsmap extension, docs/EVALUATE.md, "The
+// attitude-aligned mesh metrics"). Along a nearly straight track the frame
+// positions barely determine the rotation about the track: Umeyama's roll
+// is off by about sigma_position / (spread sqrt(N)), where spread is the
+// track's standard deviation across its main direction, so millimetres of
+// position error tilt everything mapped by S_true_est (the mesh) by tenths
+// of a degree. The frames' orientations pin that rotation directly:
+//   S_true_est_attitude  rotation R = chordal mean over the frames of
+//                        R_true(i) R_est(i)^T (the rotation that turns the
+//                        run's W into the truth's, as each frame sees it;
+//                        chordalMeanRotation), then the scale and translation
+//                        minimising sum_i |p_true(i) - (s R p_est(i) + t)|^2
+//                        with R held (alignScaleTranslation);
+//                        core/geometry/rotation_anchored_alignment.h.
+//   alignment_cross_track_spread_m  the second-largest singular value of the
+//                        centred true frame positions divided by sqrt(N): the
+//                        std of the track across its main direction, i.e. how
+//                        well positions alone fix the roll about the track.
 
 #include <optional>
+#include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "core/geometry/sim3.h"
 #include "core/survey/pose_tables.h"
@@ -33,6 +55,13 @@ struct TrajectoryMetrics {
   MetricValue uhi_position_rmse_m;
   MetricValue uhi_rotation_rmse_deg;
   std::optional<Sim3> S_true_est;  // the frames' alignment, when it exists
+  std::string why_no_alignment;    // why S_true_est is absent (empty when present)
+
+  // Extension (header comment): the alignment with the frames' orientations'
+  // rotation, and how well the positions alone condition S_true_est.
+  std::optional<Sim3> S_true_est_attitude;
+  std::string why_no_attitude_alignment;  // empty when S_true_est_attitude is present
+  MetricValue alignment_cross_track_spread_m;
 };
 
 // Frames and lines are paired by index; sizes must agree (std::invalid_argument).
@@ -40,6 +69,18 @@ TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_
                                            const std::vector<TimedPose>& frames_true,
                                            const std::vector<LinePose>& lines_est,
                                            const std::vector<LinePose>& lines_true);
+
+// The attitude-anchored S_true_est_attitude of frames paired by index (header
+// comment). Throws std::invalid_argument with the reason when it is
+// undetermined: the orientations cancel out, or the positions do not move
+// along each other (all equal).
+Sim3 alignFramesByAttitude(const std::vector<TimedPose>& frames_est,
+                           const std::vector<TimedPose>& frames_true);
+
+// sqrt of the second-largest eigenvalue of the positions' covariance (divided
+// by N): the second singular value of the centred positions over sqrt(N), the
+// std across the main direction. 0 for fewer than 2 positions.
+double crossTrackSpread(const std::vector<Eigen::Vector3d>& positions);
 
 // The rotation angle of q_a^-1 q_b in degrees, in [0, 180].
 double rotationAngleDeg(const Eigen::Quaterniond& q_a, const Eigen::Quaterniond& q_b);

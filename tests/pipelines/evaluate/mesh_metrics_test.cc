@@ -95,6 +95,10 @@ TEST_F(MeshMetricsTest, TheMeshIsJudgedAfterTheFramesAlignment) {
   EvaluationMetrics metrics = evaluate();
   EXPECT_NEAR(value(metrics.mesh_accuracy_m), 0.0, 1e-9);
   EXPECT_EQ(value(metrics.mesh_completeness), 1.0);
+  // The attitude-anchored alignment (the frames' orientations turned by the
+  // same rotation) maps it back as well.
+  EXPECT_NEAR(value(metrics.mesh_accuracy_attitude_aligned_m), 0.0, 1e-9);
+  EXPECT_EQ(value(metrics.mesh_completeness_attitude_aligned), 1.0);
 
   // The same trajectory with the truth's mesh: the mesh disagrees with its
   // own trajectory, and the alignment shows it.
@@ -107,7 +111,9 @@ TEST_F(MeshMetricsTest, TheMeshIsJudgedAfterTheFramesAlignment) {
 TEST_F(MeshMetricsTest, WithoutMeshPlyBothAreNullAndSayWhy) {
   fixture_.writeRunEqualToTruth();
   const EvaluationMetrics metrics = evaluate();
-  for (const MetricValue* metric : {&metrics.mesh_accuracy_m, &metrics.mesh_completeness}) {
+  for (const MetricValue* metric :
+       {&metrics.mesh_accuracy_m, &metrics.mesh_completeness,
+        &metrics.mesh_accuracy_attitude_aligned_m, &metrics.mesh_completeness_attitude_aligned}) {
     EXPECT_FALSE(metric->value.has_value());
     EXPECT_EQ(metric->reason, "RUN/map/mesh.ply not found: the run has no surface stage");
   }
@@ -126,6 +132,13 @@ TEST_F(MeshMetricsTest, WithoutTheFramesAlignmentBothAreNullAndSayWhy) {
     EXPECT_FALSE(metric->value.has_value());
     EXPECT_NE(metric->reason.find("no similarity alignment"), std::string::npos) << metric->reason;
   }
+  // The attitude-anchored alignment takes its rotation from the orientations
+  // (here the truth's): positions along one line still give scale and
+  // translation, so the mesh is measured under it.
+  EXPECT_TRUE(metrics.mesh_accuracy_attitude_aligned_m.value.has_value())
+      << metrics.mesh_accuracy_attitude_aligned_m.reason;
+  EXPECT_TRUE(metrics.mesh_completeness_attitude_aligned.value.has_value())
+      << metrics.mesh_completeness_attitude_aligned.reason;
 }
 
 TEST_F(MeshMetricsTest, APointCloudHasAnAccuracyButNoCompleteness) {
@@ -163,6 +176,12 @@ TEST_F(MeshMetricsTest, MetricsJsonCarriesTheValues) {
   json << in.rdbuf();
   EXPECT_NE(json.str().find("\"mesh_completeness\": 1,"), std::string::npos) << json.str();
   EXPECT_EQ(json.str().find("\"mesh_accuracy_m\": null"), std::string::npos) << json.str();
+  EXPECT_NE(json.str().find("\"mesh_completeness_attitude_aligned\": 1\n"), std::string::npos)
+      << json.str();
+  EXPECT_NE(json.str().find("\"mesh_accuracy_attitude_aligned_m\": "), std::string::npos);
+  EXPECT_EQ(json.str().find("\"mesh_accuracy_attitude_aligned_m\": null"), std::string::npos);
+  // The fixture's track wanders 0.4 m sideways: far from weakly conditioned.
+  EXPECT_NE(json.str().find("\"alignment_cross_track_spread_m\": 0."), std::string::npos);
 }
 
 TEST(MeshMetricsOptionsTest, ValidateRefusesNonsense) {
