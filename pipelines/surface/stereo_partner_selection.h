@@ -28,7 +28,7 @@ struct StereoPartnerOptions {
   double max_axis_angle_deg = 20.0;    // between the two optical axes
   double min_shared_fraction = 0.25;   // of k's landmarks also seen by the partner
   int min_landmarks = 20;              // k needs this many landmarks for a depth range
-  double depth_margin = 0.3;           // the range [p05 (1 - m), p95 (1 + m)]
+  double depth_margin = 0.15;          // the range [p05 (1 - m), p95 (1 + m)]
 
   std::string validate() const;
 };

@@ -220,6 +220,10 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
   EXPECT_EQ(unknown.err,
             "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef, "
             "surface\n");
+  const RunResult surface = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
+                                                quoted(run_folder.string()) + " --surface poisson");
+  EXPECT_EQ(surface.exit_status, 1);
+  EXPECT_EQ(surface.err, "error: unknown surface 'poisson' for --surface; expected one of dense, sparse\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

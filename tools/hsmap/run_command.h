@@ -5,7 +5,9 @@
 //
 //   variant      stages
 //   sequential   frontend (docs/FRONTEND.md), georef (docs/GEOREF.md),
-//                surface (docs/SURFACE.md; from the sparse landmarks for now)
+//                surface (docs/SURFACE.md; --surface dense, the default, meshes
+//                the keyframes' fused stereo depth maps; --surface sparse the
+//                adjusted landmarks alone, the reference paper's way)
 //   planar       georef (the INS alone: no vision)
 //
 // --until names the last stage to run; --from the first (the earlier
@@ -32,6 +34,7 @@ struct RunOptions {
   std::string until;  // empty: the variant's last stage
   std::string from;   // empty: the variant's first stage
   bool force = false;
+  std::string surface = "dense";  // dense or sparse
 };
 
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);
