@@ -66,6 +66,14 @@ DenseSurfaceOptions::DenseSurfaceOptions() {
   // fused points' error (flat: 4.1 -> 3.8 mm, low-relief 2.8 -> 2.7 mm,
   // rugged 3.2 -> 3.2 mm median, completeness unchanged).
   stereo.block_size = 7;
+  // The hull's rim is what long edges mark in a mesh of the whole swath; here
+  // the tiles are cropped to their squares, and the long triangles left are
+  // mostly those bridging a boulder's occluded flank to the ground, which the
+  // relative test (5 x the 2 cm median edge) removed: on rugged completeness
+  // 0.957 with it, 0.971 without, accuracy unchanged. Only triangles with an
+  // edge over 0.5 m (more than any flank of the presets) go.
+  cleaning.max_edge_factor = 0.0;
+  cleaning.max_edge_m = 0.5;
 }
 
 std::string DenseSurfaceOptions::validate() const {
