@@ -25,6 +25,7 @@
 #include "pipelines/evaluate/evaluate_run.h"
 #include "pipelines/evaluate/ortho_metrics.h"
 #include "tests/pipelines/evaluate/evaluation_fixture.h"
+#include "tests/pipelines/evaluate/smooth_texture.h"
 
 namespace hsmap {
 namespace {
@@ -40,43 +41,12 @@ constexpr int kTruthSide = 400, kTruthNanColumns = 40;
 constexpr double kTruthNorthMax = 2.5, kTruthEastMin = -1.0;
 constexpr double kOrthoPixel = 0.004;
 
-// A smooth random field over north [0, 3] x east [-1.5, 1.5] m: white noise
-// on a 2.5 mm lattice blurred by a Gaussian of 1 cm (little energy beyond
-// the 5 mm pixels' Nyquist frequency), bilinear in between. Broadband, so
-// that phase correlation has one clear peak.
-class Texture {
- public:
-  explicit Texture(unsigned seed) {
-    std::mt19937 rng(seed);
-    std::normal_distribution<float> noise(0.0f, 1.0f);
-    lattice_.create(kSide, kSide, CV_32F);
-    for (int r = 0; r < kSide; ++r) {
-      for (int c = 0; c < kSide; ++c) lattice_.at<float>(r, c) = noise(rng);
-    }
-    cv::GaussianBlur(lattice_, lattice_, cv::Size(0, 0), 4.0);
-    cv::Scalar mean, sd;
-    cv::meanStdDev(lattice_, mean, sd);
-    lattice_ = (lattice_ - mean[0]) / sd[0];
-  }
-  double operator()(double north, double east) const {
-    const double u = (east + 1.5) / kCell, v = north / kCell;
-    const int c = std::clamp(static_cast<int>(std::floor(u)), 0, kSide - 2);
-    const int r = std::clamp(static_cast<int>(std::floor(v)), 0, kSide - 2);
-    const double fu = u - c, fv = v - r;
-    const auto at = [&](int rr, int cc) { return static_cast<double>(lattice_.at<float>(rr, cc)); };
-    return (1 - fv) * ((1 - fu) * at(r, c) + fu * at(r, c + 1)) +
-           fv * ((1 - fu) * at(r + 1, c) + fu * at(r + 1, c + 1));
-  }
-
- private:
-  static constexpr double kCell = 0.0025;
-  static constexpr int kSide = 1200;
-  cv::Mat lattice_;
-};
+// Textures over north [0, 3] x east [-1.5, 1.5] m (smooth_texture.h).
+using Texture = testing::SmoothTexture;
 
 // Two materials mixed by two textures, so that the spectra's direction varies.
 Eigen::VectorXf seabed(double north, double east) {
-  static const Texture texture_a(5), texture_b(9);
+  static const Texture texture_a(5, 0.0, -1.5, 1200, 1200), texture_b(9, 0.0, -1.5, 1200, 1200);
   const Eigen::Vector4d a(0.2, 0.4, 0.6, 0.3), b(0.5, 0.3, 0.1, 0.4);
   return ((1.0 + 0.2 * texture_a(north, east)) * a + (1.0 + 0.2 * texture_b(north, east)) * b)
       .cast<float>();

@@ -26,6 +26,7 @@
 #include "core/io/envi_writer.h"
 #include "core/util/input_error.h"
 #include "pipelines/evaluate/ortho_metrics.h"
+#include "tests/pipelines/evaluate/smooth_texture.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
@@ -48,48 +49,16 @@ constexpr double kRmseFloor = 0.001;
 
 GeodeticPoint surveyOrigin() { return GeodeticPoint{43.0, 5.0, 0.0}; }
 
-// Smooth random texture: white noise on a 2.5 mm lattice blurred by a
-// Gaussian of 10 mm (little energy beyond the 5 mm pixels' Nyquist
-// frequency, so that the two grids do not alias it differently), bilinear in
-// between; broadband, so phase correlation has
-// one clear peak (a sum of a few sinusoids would not).
-class Texture {
- public:
-  explicit Texture(unsigned seed) {
-    std::mt19937 rng(seed);
-    std::normal_distribution<float> noise(0.0f, 1.0f);
-    lattice_.create(kRows, kCols, CV_32F);
-    for (int r = 0; r < kRows; ++r) {
-      for (int c = 0; c < kCols; ++c) lattice_.at<float>(r, c) = noise(rng);
-    }
-    cv::GaussianBlur(lattice_, lattice_, cv::Size(0, 0), 4.0);
-    cv::Scalar mean, sd;
-    cv::meanStdDev(lattice_, mean, sd);
-    lattice_ = (lattice_ - mean[0]) / sd[0];  // mean 0, standard deviation 1
-  }
-  // At (north, east) in W.
-  double operator()(const Eigen::Vector2d& ne) const {
-    const double u = (ne.y() - kEast0) / kCell, v = (ne.x() - kNorth0) / kCell;
-    const int c = std::clamp(static_cast<int>(std::floor(u)), 0, kCols - 2);
-    const int r = std::clamp(static_cast<int>(std::floor(v)), 0, kRows - 2);
-    const double fu = u - c, fv = v - r;
-    const auto at = [&](int rr, int cc) { return static_cast<double>(lattice_.at<float>(rr, cc)); };
-    return (1 - fv) * ((1 - fu) * at(r, c) + fu * at(r, c + 1)) +
-           fv * ((1 - fu) * at(r + 1, c) + fu * at(r + 1, c + 1));
-  }
-
- private:
-  static constexpr double kCell = 0.0025, kNorth0 = -0.5, kEast0 = -0.5;
-  static constexpr int kRows = 1000, kCols = 1300;  // north -0.5..2.0, east -0.5..2.75
-  cv::Mat lattice_;
-};
+// The textures, over north -0.5..2.0 m, east -0.5..2.75 m.
+using Texture = testing::SmoothTexture;
+Texture makeTexture(unsigned seed) { return Texture(seed, -0.5, -0.5, 1000, 1300); }
 
 const Texture& texture1() {
-  static const Texture texture(11);
+  static const Texture texture = makeTexture(11);
   return texture;
 }
 const Texture& texture2() {
-  static const Texture texture(23);
+  static const Texture texture = makeTexture(23);
   return texture;
 }
 
@@ -98,11 +67,11 @@ Eigen::VectorXd spectrum2() { return Eigen::Vector4d(0.5, 0.3, 0.1, 0.4); }
 
 // Two materials mixed by two textures: the spectrum's direction varies.
 Eigen::VectorXd mixedSeabed(const Eigen::Vector2d& ne) {
-  return (1.0 + 0.2 * texture1()(ne)) * spectrum1() + (1.0 + 0.2 * texture2()(ne)) * spectrum2();
+  return (1.0 + 0.2 * texture1()(ne.x(), ne.y())) * spectrum1() + (1.0 + 0.2 * texture2()(ne.x(), ne.y())) * spectrum2();
 }
 // One material, its brightness textured: the spectrum's direction is constant.
 Eigen::VectorXd singleMaterial(const Eigen::Vector2d& ne) {
-  return (1.0 + 0.2 * texture1()(ne)) * spectrum1();
+  return (1.0 + 0.2 * texture1()(ne.x(), ne.y())) * spectrum1();
 }
 
 using Spectrum = std::function<std::optional<Eigen::VectorXd>(const Eigen::Vector2d& ne)>;
@@ -451,7 +420,7 @@ TEST(OrthoMetrics, UnrelatedProductCannotBeRegistered) {
   writeProduced(
       rasters.produced,
       [](const Eigen::Vector2d& y) {
-        return std::optional<Eigen::VectorXd>((1.0 + 0.2 * texture2()(y)) * spectrum1());
+        return std::optional<Eigen::VectorXd>((1.0 + 0.2 * texture2()(y.x(), y.y())) * spectrum1());
       });
   const OrthoMetrics metrics = measure(rasters);
   EXPECT_EQ(metrics.patches_with_data, metrics.patches);
