@@ -1,0 +1,503 @@
+#include "pipelines/hyperspectral/hyperspectral_ortho.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include "core/io/envi_writer.h"
+#include "core/io/ply_io.h"
+#include "core/util/input_error.h"
+#include "core/util/progress.h"
+#include "core/util/stage_timer.h"
+#include "pipelines/hyperspectral/ortho_accumulator.h"
+#include "pipelines/hyperspectral/ortho_quicklook.h"
+#include "pipelines/hyperspectral/w_to_utm_lattice.h"
+
+namespace hsmap {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void require(bool ok, const std::string& field, const std::string& expected) {
+  if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
+}
+
+// `Data  Ignore Value` -> `data ignore value`.
+std::string normaliseKey(const std::string& key) {
+  std::string out;
+  for (const char c : key) {
+    if (std::isspace(static_cast<unsigned char>(c)) != 0) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+// The cube's `data ignore value` (NaN accepted: then it adds nothing to the
+// non-finite check).
+std::optional<float> dataIgnoreValue(const EnviReader& cube) {
+  for (const auto& [key, value] : cube.header().other_fields) {
+    if (normaliseKey(key) != "data ignore value") continue;
+    std::string text = value;
+    std::erase_if(text, [](char c) { return c == '{' || c == '}' || std::isspace(static_cast<unsigned char>(c)); });
+    char* end = nullptr;
+    const double number = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) {
+      throw InputError(cube.headerPath(), InputError::atKey("data ignore value"),
+                       "expected a number, found '" + value + "'");
+    }
+    if (std::isnan(number)) return std::nullopt;
+    return float(number);
+  }
+  return std::nullopt;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto mid = values.begin() + std::ptrdiff_t(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+// What the footprint pass keeps of a line.
+struct LineFootprint {
+  std::size_t pose = 0;            // index into line_poses
+  Eigen::AlignedBox3d box_W;       // of its hits
+  int row_min = 0, row_max = -1;   // grid rows its hits can fall in
+};
+
+EnviHeader orthoHeader(const EnviReader& cube, const std::vector<double>& wavelengths_nm,
+                       const OrthoGrid& grid, EnviInterleave interleave) {
+  const EnviHeader& in = cube.header();
+  EnviHeader header;
+  header.samples = grid.cols;
+  header.lines = grid.rows;
+  header.bands = in.bands;
+  header.data_type = EnviDataType::float32;
+  header.interleave = interleave;
+  header.wavelength = wavelengths_nm;
+  header.wavelength_units = "Nanometers";
+  // fwhm in the cube's wavelength units, converted like the wavelengths.
+  if (!in.fwhm.empty() && in.wavelength.size() == in.fwhm.size()) {
+    header.fwhm.resize(in.fwhm.size());
+    for (std::size_t b = 0; b < in.fwhm.size(); ++b) {
+      const double scale = in.wavelength[b] != 0.0 ? wavelengths_nm[b] / in.wavelength[b] : 1.0;
+      header.fwhm[b] = in.fwhm[b] * scale;
+    }
+  }
+  header.band_names = in.band_names;
+  header.map_info = grid.mapInfo();
+  header.description =
+      "hsmap products: hyperspectral ortho-image (mean of the UHI spectra whose ray hit each "
+      "pixel, gaps filled within the line spacing), values as in the cube, NaN where nothing was seen";
+  return header;
+}
+
+EnviHeader ancillaryHeader(const OrthoGrid& grid) {
+  EnviHeader header;
+  header.samples = grid.cols;
+  header.lines = grid.rows;
+  header.bands = 4;
+  header.data_type = EnviDataType::float32;
+  header.interleave = EnviInterleave::bil;
+  header.band_names = {"scan line", "sample", "range (m)", "incidence (deg)"};
+  header.map_info = grid.mapInfo();
+  header.description =
+      "hsmap products: per ortho pixel, scan line, sample, range and incidence angle of the hit "
+      "nearest the pixel centre (gap-filled pixels: of the nearest observed pixel); NaN where empty";
+  return header;
+}
+
+}  // namespace
+
+void HyperspectralOptions::validate() const {
+  require(pixel_m > 0.0 && std::isfinite(pixel_m), "pixel_m", "a pixel size > 0 m");
+  require(fill_radius_px >= -1, "fill_radius_px", "-1 (automatic), 0 (none) or a radius in pixels");
+  require(max_fill_radius_px >= 0, "max_fill_radius_px", "a radius >= 0 pixels");
+  require(tile_memory_mb >= 1.0 && std::isfinite(tile_memory_mb), "tile_memory_mb", "at least 1 MB");
+  require(lines_per_batch >= 1, "lines_per_batch", "at least 1");
+  require(quicklook_max_side >= 16, "quicklook_max_side", "at least 16 pixels");
+  cast.validate();
+  if (write_geotiff) geotiff.validate();
+}
+
+double HyperspectralReport::coverage() const {
+  const std::int64_t pixels = grid.pixelCount();
+  return pixels > 0 ? double(validPixels()) / double(pixels) : 0.0;
+}
+
+std::string HyperspectralReport::summary() const {
+  std::ostringstream out;
+  out << "hyperspectral ortho-image: " << grid.cols << " x " << grid.rows << " pixels of "
+      << grid.pixel_m * 1000.0 << " mm, " << bands << " bands, UTM zone " << grid.zone
+      << (grid.northern ? "N" : "S") << ", " << tiles << " tile(s) of " << tile_rows << " rows\n";
+  out << "  scan lines: " << lines << " cast, " << lines_with_hits << " with hits, " << lines_read
+      << " cube lines read\n";
+  out << "  rays: " << pixels_cast << " cast, " << hits << " hits, " << misses << " misses";
+  if (pixels_without_ray > 0) out << ", " << pixels_without_ray << " pixels without a ray";
+  out << "\n  spectra: " << painted << " painted, " << skipped_non_finite << " skipped (NaN/inf), "
+      << skipped_ignore_value << " skipped (data ignore value)\n";
+  out << "  pixels: " << observed_pixels << " observed + " << filled_pixels << " gap-filled (radius "
+      << fill_radius_px << " px; line spacing " << line_spacing_m * 1000.0 << " mm, sample spacing "
+      << sample_spacing_m * 1000.0 << " mm) = " << coverage() * 100.0 << " % of the grid\n";
+  out << "  time:";
+  for (const auto& [name, s] : seconds) out << " " << name << " " << s << " s;";
+  out << " peak memory " << peak_memory_mb << " MB (" << peak_memory_before_geotiff_mb
+      << " MB before the GeoTIFF)\n";
+  return out.str();
+}
+
+HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
+                                            const std::vector<double>& wavelengths_nm,
+                                            const PushbroomCamera& camera,
+                                            const std::vector<LinePose>& line_poses,
+                                            const MeshRayCaster& mesh,
+                                            const UtmProjection& projection,
+                                            const std::filesystem::path& out_folder,
+                                            const HyperspectralOptions& options, std::ostream& log) {
+  options.validate();
+  const int bands = cube.bands();
+  const int samples = cube.samples();
+  if (int(wavelengths_nm.size()) != bands) {
+    throw std::invalid_argument("writeHyperspectralOrtho: " + std::to_string(wavelengths_nm.size()) +
+                                " wavelengths for a cube of " + std::to_string(bands) + " bands");
+  }
+  if (camera.samples() != samples) {
+    throw std::invalid_argument("writeHyperspectralOrtho: the UHI camera has " +
+                                std::to_string(camera.samples()) + " samples, the cube " +
+                                std::to_string(samples));
+  }
+  for (const LinePose& pose : line_poses) {
+    if (pose.line < 0 || pose.line >= cube.lines()) {
+      throw std::invalid_argument("writeHyperspectralOrtho: line pose for scan line " +
+                                  std::to_string(pose.line) + ", the cube has " +
+                                  std::to_string(cube.lines()) + " lines");
+    }
+  }
+  const std::optional<float> ignore = dataIgnoreValue(cube);
+  StageTimings timings;
+  HyperspectralReport report;
+  report.bands = bands;
+  report.lines = std::int64_t(line_poses.size());
+  const ScanLineCaster caster(camera, mesh, options.cast);
+  const std::size_t batch = std::size_t(options.lines_per_batch);
+
+  // ---- 1. footprint pass -----------------------------------------------------
+  std::vector<LineFootprint> footprints;
+  Eigen::AlignedBox2d box_NE;
+  double down_sum = 0.0;
+  std::int64_t down_count = 0;
+  {
+    auto stage = timings.stage("footprint cast");
+    const int mid = samples / 2;
+    const int next = std::min(samples - 1, mid + 1);
+    std::vector<double> line_steps, sample_steps;
+    Eigen::Vector3d previous_centre = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    std::vector<ScanLineHits> hits;
+    std::vector<std::int64_t> lines;
+    std::vector<SE3d> poses;
+    Progress progress("hyperspectral footprint", std::int64_t(line_poses.size()), "lines", log);
+    for (std::size_t first = 0; first < line_poses.size(); first += batch) {
+      const std::size_t count = std::min(batch, line_poses.size() - first);
+      lines.clear();
+      poses.clear();
+      for (std::size_t k = 0; k < count; ++k) {
+        lines.push_back(line_poses[first + k].line);
+        poses.push_back(line_poses[first + k].T);
+      }
+      caster.castLines(lines, poses, hits);
+      for (std::size_t k = 0; k < count; ++k) {
+        const ScanLineHits& line = hits[k];
+        report.pixels_cast += line.hits + line.misses;
+        report.pixels_without_ray += line.no_ray;
+        report.hits += line.hits;
+        report.misses += line.misses;
+        const Eigen::Vector3d centre = line.p_W[std::size_t(mid)];
+        if (line.hit(mid) && previous_centre.allFinite()) {
+          line_steps.push_back((centre - previous_centre).head<2>().norm());
+        }
+        previous_centre = centre;
+        if (line.hit(mid) && line.hit(next) && next != mid) {
+          sample_steps.push_back((line.p_W[std::size_t(next)] - centre).head<2>().norm());
+        }
+        if (line.hits == 0) continue;
+        LineFootprint footprint;
+        footprint.pose = first + k;
+        for (int s = 0; s < samples; ++s) {
+          if (!line.hit(s)) continue;
+          footprint.box_W.extend(line.p_W[std::size_t(s)]);
+          down_sum += line.p_W[std::size_t(s)].z();
+          ++down_count;
+        }
+        box_NE.extend(footprint.box_W.min().head<2>());
+        box_NE.extend(footprint.box_W.max().head<2>());
+        footprints.push_back(footprint);
+      }
+      progress.advance(std::int64_t(count));
+    }
+    progress.finish();
+    report.lines_with_hits = std::int64_t(footprints.size());
+    report.line_spacing_m = median(line_steps);
+    report.sample_spacing_m = median(sample_steps);
+  }
+  if (footprints.empty()) {
+    throw std::runtime_error("hyperspectral ortho-image: none of the " +
+                             std::to_string(line_poses.size()) +
+                             " scan lines' rays hit the mesh (wrong poses or mesh?)");
+  }
+
+  // ---- 2. grid ---------------------------------------------------------------
+  const WToUtmLattice lattice(projection, box_NE, down_sum / double(down_count));
+  Eigen::AlignedBox2d box_EN;
+  std::vector<Eigen::AlignedBox2d> line_boxes_EN(footprints.size());
+  for (std::size_t i = 0; i < footprints.size(); ++i) {
+    const Eigen::AlignedBox3d& b = footprints[i].box_W;
+    Eigen::AlignedBox2d en;
+    for (int corner = 0; corner < 8; ++corner) {
+      en.extend(lattice.toUtm(b.corner(Eigen::AlignedBox3d::CornerType(corner))));
+    }
+    // The map is affine in (north, east, down) to ~1e-7 m over a survey: a
+    // millimetre of margin keeps every hit of the line inside its box.
+    en.min().array() -= 1e-3;
+    en.max().array() += 1e-3;
+    line_boxes_EN[i] = en;
+    box_EN.extend(en);
+  }
+  const OrthoGrid grid =
+      OrthoGrid::coveringUtm(box_EN, options.pixel_m, projection.zone(), projection.northernHemisphere());
+  report.grid = grid;
+  for (std::size_t i = 0; i < footprints.size(); ++i) {
+    footprints[i].row_min = std::max(0, grid.containingPixel(line_boxes_EN[i].max()).y());
+    footprints[i].row_max = std::min(grid.rows - 1, grid.containingPixel(line_boxes_EN[i].min()).y());
+  }
+  const double spacing = std::max(report.line_spacing_m, report.sample_spacing_m);
+  report.fill_radius_px =
+      options.fill_radius_px >= 0
+          ? options.fill_radius_px
+          : std::min(options.max_fill_radius_px, int(std::ceil(spacing / options.pixel_m - 1e-9)));
+  const int halo = report.fill_radius_px;
+  const std::int64_t row_bytes = OrthoTileAccumulator::bytesPerRow(grid.cols, bands);
+  const std::int64_t budget_rows = std::int64_t(options.tile_memory_mb * 1024.0 * 1024.0) / row_bytes;
+  report.tile_rows = int(std::clamp<std::int64_t>(budget_rows - 2 * halo, 1, grid.rows));
+  report.tiles = (grid.rows + report.tile_rows - 1) / report.tile_rows;
+  log << "hyperspectral ortho-image: " << grid.cols << " x " << grid.rows << " pixels of "
+      << grid.pixel_m * 1000.0 << " mm in " << report.tiles << " tile(s) of " << report.tile_rows
+      << " rows; gap-fill radius " << report.fill_radius_px << " px\n";
+
+  // ---- 3. tiles ----------------------------------------------------------------
+  std::filesystem::create_directories(out_folder);
+  report.ortho_hdr = out_folder / "ortho.hdr";
+  report.ancillary_hdr = out_folder / "ancillary.hdr";
+  {
+    auto stage = timings.stage("ortho tiles");
+    EnviWriter ortho_writer(report.ortho_hdr, orthoHeader(cube, wavelengths_nm, grid, options.interleave));
+    EnviWriter ancillary_writer(report.ancillary_hdr, ancillaryHeader(grid));
+    std::optional<OrthoQuicklook> quicklook;
+    if (options.write_quicklook) {
+      quicklook.emplace(grid.rows, grid.cols, nearestRgbBands(wavelengths_nm), options.quicklook_max_side);
+    }
+    std::int64_t total_reads = 0;
+    for (int t = 0; t < report.tiles; ++t) {
+      const int row_begin = t * report.tile_rows;
+      const int row_end = std::min(grid.rows, row_begin + report.tile_rows);
+      for (const LineFootprint& f : footprints) {
+        if (f.row_max >= row_begin - halo && f.row_min < row_end + halo) ++total_reads;
+      }
+    }
+    Progress progress("hyperspectral ortho", total_reads, "lines", log);
+    double read_s = 0.0, cast_s = 0.0, prepare_s = 0.0, accumulate_s = 0.0, write_s = 0.0, allocate_s = 0.0;
+    const std::size_t line_values = std::size_t(bands) * std::size_t(samples);
+    std::vector<std::vector<float>> band_major(batch, std::vector<float>(line_values));
+    std::vector<std::vector<float>> sample_major(batch, std::vector<float>(line_values));
+    std::vector<std::vector<Eigen::Vector2d>> col_row(batch, std::vector<Eigen::Vector2d>(std::size_t(samples)));
+    // Per sample: 0 no hit, 1 valid, 2 non-finite, 3 ignore value.
+    std::vector<std::vector<std::uint8_t>> status(batch, std::vector<std::uint8_t>(std::size_t(samples)));
+    std::vector<ScanLineHits> hits;
+    std::vector<std::int64_t> lines;
+    std::vector<SE3d> poses;
+    std::vector<float> row_out(line_values > 0 ? std::size_t(bands) * grid.cols : 0);
+    std::vector<float> ancillary_out(std::size_t(4) * grid.cols);
+    // One accumulator, reset for every tile: its memory is mapped once.
+    std::optional<OrthoTileAccumulator> accumulator;
+    for (int t = 0; t < report.tiles; ++t) {
+      const int row_begin = t * report.tile_rows;
+      const int row_end = std::min(grid.rows, row_begin + report.tile_rows);
+      auto allocate_start = Clock::now();
+      if (!accumulator) {
+        accumulator.emplace(grid, bands, row_begin, row_end, halo);
+      } else {
+        accumulator->reset(row_begin, row_end);
+      }
+      OrthoTileAccumulator& tile = *accumulator;
+      allocate_s += secondsSince(allocate_start);
+      std::vector<std::size_t> tile_lines;  // indices into footprints, in cube line order
+      for (std::size_t i = 0; i < footprints.size(); ++i) {
+        if (footprints[i].row_max >= tile.firstRow() && footprints[i].row_min < tile.lastRow()) {
+          tile_lines.push_back(i);
+        }
+      }
+      std::sort(tile_lines.begin(), tile_lines.end(), [&](std::size_t a, std::size_t b) {
+        return line_poses[footprints[a].pose].line < line_poses[footprints[b].pose].line;
+      });
+      for (std::size_t first = 0; first < tile_lines.size(); first += batch) {
+        const std::size_t count = std::min(batch, tile_lines.size() - first);
+        lines.clear();
+        poses.clear();
+        for (std::size_t k = 0; k < count; ++k) {
+          const LinePose& pose = line_poses[footprints[tile_lines[first + k]].pose];
+          lines.push_back(pose.line);
+          poses.push_back(pose.T);
+        }
+        // Reading (one reader: sequential) overlaps casting (parallel).
+        tbb::parallel_invoke(
+            [&] {
+              const auto start = Clock::now();
+              for (std::size_t k = 0; k < count; ++k) cube.readLine(int(lines[k]), band_major[k].data());
+              read_s += secondsSince(start);
+            },
+            [&] {
+              const auto start = Clock::now();
+              caster.castLines(lines, poses, hits);
+              cast_s += secondsSince(start);
+            });
+        auto start = Clock::now();
+        tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
+          const float* in = band_major[k].data();
+          float* out = sample_major[k].data();
+          for (int b = 0; b < bands; ++b) {
+            for (int s = 0; s < samples; ++s) out[std::size_t(s) * bands + b] = in[std::size_t(b) * samples + s];
+          }
+          const ScanLineHits& line = hits[k];
+          for (int s = 0; s < samples; ++s) {
+            std::uint8_t& st = status[k][std::size_t(s)];
+            if (!line.hit(s)) {
+              st = 0;
+              continue;
+            }
+            col_row[k][std::size_t(s)] = grid.pixelOfUtm(lattice.toUtm(line.p_W[std::size_t(s)]));
+            const float* spectrum = out + std::size_t(s) * bands;
+            st = 1;
+            for (int b = 0; b < bands; ++b) {
+              if (!std::isfinite(spectrum[b])) {
+                st = 2;
+                break;
+              }
+              if (ignore && spectrum[b] == *ignore) st = 3;
+            }
+          }
+        });
+        prepare_s += secondsSince(start);
+        start = Clock::now();
+        for (std::size_t k = 0; k < count; ++k) {
+          const ScanLineHits& line = hits[k];
+          OrthoHit hit;
+          hit.line = float(line.line);
+          for (int s = 0; s < samples; ++s) {
+            const std::uint8_t st = status[k][std::size_t(s)];
+            if (st == 0) continue;
+            const Eigen::Vector2d& p = col_row[k][std::size_t(s)];
+            if (st != 1) {
+              if (tile.owns(p)) (st == 2 ? report.skipped_non_finite : report.skipped_ignore_value) += 1;
+              continue;
+            }
+            hit.col_row = p;
+            hit.spectrum = sample_major[k].data() + std::size_t(s) * bands;
+            hit.sample = float(s);
+            hit.range_m = line.range_m[std::size_t(s)];
+            hit.incidence_deg = line.incidence_deg[std::size_t(s)];
+            if (tile.add(hit)) ++report.painted;
+          }
+        }
+        accumulate_s += secondsSince(start);
+        report.lines_read += std::int64_t(count);
+        progress.advance(std::int64_t(count));
+      }
+      auto tile_start = Clock::now();
+      tile.finish(report.fill_radius_px);
+      accumulate_s += secondsSince(tile_start);
+      tile_start = Clock::now();
+      for (int row = row_begin; row < row_end; ++row) {
+        tile.spectraRow(row, row_out.data());
+        ortho_writer.writeLine(row_out.data());
+        if (quicklook) quicklook->addRow(row, row_out.data());
+        tile.ancillaryRow(row, ancillary_out.data());
+        ancillary_writer.writeLine(ancillary_out.data());
+      }
+      write_s += secondsSince(tile_start);
+      report.observed_pixels += tile.observedPixels();
+      report.filled_pixels += tile.filledPixels();
+    }
+    const auto start = Clock::now();
+    ortho_writer.finish();
+    ancillary_writer.finish();
+    write_s += secondsSince(start);
+    progress.finish();
+    stage.stop();
+    timings.record("  allocate + clear tiles", allocate_s);
+    timings.record("  read cube (overlaps cast)", read_s);
+    timings.record("  cast", cast_s);
+    timings.record("  project + check", prepare_s);
+    timings.record("  accumulate + fill", accumulate_s);
+    timings.record("  write ENVI", write_s);
+    if (quicklook) {
+      auto ql = timings.stage("quick-look");
+      report.quicklook_png = out_folder / "ortho_rgb.png";
+      quicklook->write(report.quicklook_png);
+    }
+  }
+
+  report.peak_memory_before_geotiff_mb = peakResidentMemoryMb();
+
+  // ---- 4. GeoTIFF ----------------------------------------------------------------
+  if (options.write_geotiff) {
+    auto stage = timings.stage("geotiff");
+    report.ortho_tif = out_folder / "ortho.tif";
+    exportEnviToCog(report.ortho_hdr, report.ortho_tif, options.geotiff);
+  }
+  report.seconds = timings.seconds();
+  report.peak_memory_mb = peakResidentMemoryMb();
+  return report;
+}
+
+HyperspectralReport writeHyperspectralProducts(const Survey& survey,
+                                               const std::vector<LinePose>& line_poses,
+                                               const std::filesystem::path& mesh_ply,
+                                               const std::filesystem::path& out_folder,
+                                               const HyperspectralOptions& options,
+                                               std::ostream& log) {
+  options.validate();
+  if (!survey.cube) throw std::invalid_argument("writeHyperspectralProducts: the survey's cube is not open");
+  const auto start = Clock::now();
+  const PlyMesh ply = readPly(mesh_ply);
+  if (ply.triangles.empty()) {
+    throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
+                                       std::to_string(ply.vertices.size()) + " vertices");
+  }
+  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  const double mesh_s = secondsSince(start);
+  const PushbroomCamera camera(options.camera.value_or(survey.config.uhi.camera));
+  const UtmProjection projection(survey.origin);
+  HyperspectralReport report = writeHyperspectralOrtho(*survey.cube, survey.wavelengths_nm, camera,
+                                                       line_poses, mesh, projection, out_folder,
+                                                       options, log);
+  report.seconds.insert(report.seconds.begin(), std::make_pair(std::string("read mesh + BVH"), mesh_s));
+  return report;
+}
+
+}  // namespace hsmap

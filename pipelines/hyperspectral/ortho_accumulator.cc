@@ -1,0 +1,198 @@
+#include "pipelines/hyperspectral/ortho_accumulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <tbb/parallel_for.h>
+
+namespace hsmap {
+
+namespace {
+constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+}  // namespace
+
+std::int64_t OrthoTileAccumulator::bytesPerRow(int cols, int bands) {
+  return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 4 + 16);
+}
+
+OrthoTileAccumulator::OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin,
+                                           int row_end, int halo)
+    : rows_(grid.rows), cols_(grid.cols), bands_(bands), halo_(halo) {
+  if (bands <= 0 || halo < 0 || grid.cols <= 0) {
+    throw std::invalid_argument("OrthoTileAccumulator: " + std::to_string(bands) + " bands, " +
+                                std::to_string(grid.cols) + " columns, halo " + std::to_string(halo));
+  }
+  reset(row_begin, row_end);
+}
+
+void OrthoTileAccumulator::reset(int row_begin, int row_end) {
+  if (row_begin < 0 || row_end > rows_ || row_begin >= row_end) {
+    throw std::invalid_argument("OrthoTileAccumulator: rows [" + std::to_string(row_begin) + ", " +
+                                std::to_string(row_end) + ") of a grid of " + std::to_string(rows_));
+  }
+  row_begin_ = row_begin;
+  row_end_ = row_end;
+  first_row_ = std::max(0, row_begin - halo_);
+  last_row_ = std::min(rows_, row_end + halo_);
+  finished_ = false;
+  observed_owned_ = filled_owned_ = 0;
+  const std::size_t pixels = std::size_t(last_row_ - first_row_) * std::size_t(cols_);
+  // assign() keeps the capacity when the new size fits in it.
+  sums_.assign(pixels * std::size_t(bands_), 0.0f);
+  counts_.assign(pixels, 0);
+  state_.assign(pixels, kEmpty);
+  best_d2_.assign(pixels, std::numeric_limits<float>::infinity());
+  ancillary_.assign(pixels, Eigen::Vector4f::Constant(kNaNf));
+}
+
+bool OrthoTileAccumulator::owns(const Eigen::Vector2d& col_row) const {
+  const double row = std::floor(col_row.y() + 0.5);
+  return row >= row_begin_ && row < row_end_;
+}
+
+bool OrthoTileAccumulator::add(const OrthoHit& hit) {
+  const double col_f = std::floor(hit.col_row.x() + 0.5);
+  const double row_f = std::floor(hit.col_row.y() + 0.5);
+  if (!(col_f >= 0 && col_f < cols_ && row_f >= first_row_ && row_f < last_row_)) return false;
+  const int col = int(col_f), row = int(row_f);
+  const std::size_t i = index(row, col);
+  float* sum = &sums_[i * std::size_t(bands_)];
+  for (int b = 0; b < bands_; ++b) sum[b] += hit.spectrum[b];
+  ++counts_[i];
+  const float d2 = float((hit.col_row.x() - col_f) * (hit.col_row.x() - col_f) +
+                         (hit.col_row.y() - row_f) * (hit.col_row.y() - row_f));
+  if (d2 < best_d2_[i]) {
+    best_d2_[i] = d2;
+    ancillary_[i] = Eigen::Vector4f(hit.line, hit.sample, hit.range_m, hit.incidence_deg);
+  }
+  return row >= row_begin_ && row < row_end_;
+}
+
+void OrthoTileAccumulator::finish(int fill_radius_px) {
+  if (finished_) throw std::logic_error("OrthoTileAccumulator::finish called twice");
+  finished_ = true;
+  const int rows = last_row_ - first_row_;
+  // Means (every accumulated row: the halo feeds the filling).
+  tbb::parallel_for(0, rows, [&](int r) {
+    for (int c = 0; c < cols_; ++c) {
+      const std::size_t i = std::size_t(r) * cols_ + c;
+      if (counts_[i] == 0) continue;
+      state_[i] = kObserved;
+      const float scale = 1.0f / float(counts_[i]);
+      float* sum = &sums_[i * std::size_t(bands_)];
+      for (int b = 0; b < bands_; ++b) sum[b] *= scale;
+    }
+  });
+
+  // Gap filling of the owned rows from observed pixels only (see the header).
+  struct Offset {
+    int dc, dr;
+    float weight, d2;
+  };
+  std::vector<Offset> offsets;
+  const int radius = std::max(0, fill_radius_px);
+  for (int dr = -radius; dr <= radius; ++dr) {
+    for (int dc = -radius; dc <= radius; ++dc) {
+      const int d2 = dr * dr + dc * dc;
+      if (d2 == 0 || d2 > radius * radius) continue;
+      offsets.push_back({dc, dr, 1.0f / float(d2), float(d2)});
+    }
+  }
+  std::vector<std::int64_t> filled_per_row(std::size_t(row_end_ - row_begin_), 0);
+  std::vector<std::int64_t> observed_per_row(std::size_t(row_end_ - row_begin_), 0);
+  // Marked apart and merged after the loop, so that rows filled in parallel
+  // read a state_ nobody writes (sources are tested by state_ == kObserved).
+  std::vector<std::uint8_t> filled_mark(state_.size(), 0);
+  tbb::parallel_for(row_begin_, row_end_, [&](int row) {
+    std::vector<float> spectrum(static_cast<std::size_t>(bands_));
+    std::vector<std::pair<std::size_t, float>> sources;
+    std::int64_t filled = 0, observed = 0;
+    for (int col = 0; col < cols_; ++col) {
+      const std::size_t i = index(row, col);
+      if (state_[i] == kObserved) {
+        ++observed;
+        continue;
+      }
+      if (offsets.empty()) continue;
+      bool left = false, right = false, up = false, down = false;
+      float weight_sum = 0.0f, nearest_d2 = std::numeric_limits<float>::infinity();
+      std::size_t nearest = 0;
+      sources.clear();
+      for (const Offset& o : offsets) {
+        const int r = row + o.dr, c = col + o.dc;
+        if (r < first_row_ || r >= last_row_ || c < 0 || c >= cols_) continue;
+        const std::size_t j = index(r, c);
+        if (state_[j] != kObserved) continue;
+        // Strict cones around the four axes (diagonals belong to none), so
+        // that a straight or convex swath edge never has sources in two
+        // opposite cones.
+        left |= o.dc < 0 && -o.dc > std::abs(o.dr);
+        right |= o.dc > 0 && o.dc > std::abs(o.dr);
+        up |= o.dr < 0 && -o.dr > std::abs(o.dc);
+        down |= o.dr > 0 && o.dr > std::abs(o.dc);
+        sources.emplace_back(j, o.weight);
+        weight_sum += o.weight;
+        if (o.d2 < nearest_d2) {
+          nearest_d2 = o.d2;
+          nearest = j;
+        }
+      }
+      if (!((left && right) || (up && down))) continue;
+      std::fill(spectrum.begin(), spectrum.end(), 0.0f);
+      for (const auto& [j, weight] : sources) {
+        const float* source = &sums_[j * std::size_t(bands_)];
+        for (int b = 0; b < bands_; ++b) spectrum[std::size_t(b)] += weight * source[b];
+      }
+      float* target = &sums_[i * std::size_t(bands_)];
+      for (int b = 0; b < bands_; ++b) target[b] = spectrum[std::size_t(b)] / weight_sum;
+      filled_mark[i] = 1;
+      ancillary_[i] = ancillary_[nearest];
+      ++filled;
+    }
+    filled_per_row[std::size_t(row - row_begin_)] = filled;
+    observed_per_row[std::size_t(row - row_begin_)] = observed;
+  });
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    if (filled_mark[i] != 0) state_[i] = kFilled;
+  }
+  for (std::size_t r = 0; r < filled_per_row.size(); ++r) {
+    filled_owned_ += filled_per_row[r];
+    observed_owned_ += observed_per_row[r];
+  }
+}
+
+void OrthoTileAccumulator::spectraRow(int row, float* out) const {
+  if (!finished_ || row < row_begin_ || row >= row_end_) {
+    throw std::logic_error("OrthoTileAccumulator::spectraRow: row " + std::to_string(row) +
+                           " not owned or not finished");
+  }
+  for (int col = 0; col < cols_; ++col) {
+    const std::size_t i = index(row, col);
+    if (state_[i] == kEmpty) {
+      for (int b = 0; b < bands_; ++b) out[std::size_t(b) * cols_ + col] = kNaNf;
+    } else {
+      const float* value = &sums_[i * std::size_t(bands_)];
+      for (int b = 0; b < bands_; ++b) out[std::size_t(b) * cols_ + col] = value[b];
+    }
+  }
+}
+
+void OrthoTileAccumulator::ancillaryRow(int row, float* out) const {
+  if (!finished_ || row < row_begin_ || row >= row_end_) {
+    throw std::logic_error("OrthoTileAccumulator::ancillaryRow: row " + std::to_string(row) +
+                           " not owned or not finished");
+  }
+  for (int col = 0; col < cols_; ++col) {
+    const std::size_t i = index(row, col);
+    for (int b = 0; b < 4; ++b) {
+      out[std::size_t(b) * cols_ + col] = state_[i] == kEmpty ? kNaNf : ancillary_[i][b];
+    }
+  }
+}
+
+}  // namespace hsmap

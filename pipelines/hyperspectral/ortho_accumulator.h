@@ -1,0 +1,111 @@
+#pragma once
+// OrthoTileAccumulator: the spectra of one tile of the ortho-image (a band of
+// whole grid rows), accumulated from scan-line hits, averaged and gap-filled.
+//
+// Accumulation. A pixel of a scan line whose ray hit the surface at p_W adds
+// its spectrum to the ortho pixel CONTAINING the hit (OrthoGrid). The value
+// of an ortho pixel is the MEAN of the spectra that landed in it (every hit
+// weighs the same: no footprint model, no distance weighting), so spectra
+// are never mixed with pixels they did not fall in.
+//
+// Ancillary per pixel (ancillary.hdr, 4 bands): scan line, sample, range (m)
+// and incidence (deg) of the hit NEAREST the pixel centre (ties: the first
+// added, i.e. the earlier line).
+//
+// Gap filling (finish()). At 5 mm pixels the hits of a survey are sparser
+// than the grid (line spacing ~1 cm at 0.3 m/s and 30 lines/s), so many
+// pixels inside the swath get no hit. An empty pixel is filled by inverse
+// distance weighting (weights 1 / d^2, d in pixels between centres) of the
+// OBSERVED pixels (those that got hits; filled pixels never feed others)
+// within `fill_radius_px`, and only when those pixels surround it: there are
+// observed pixels in two opposite ones of the four strict cones around the
+// axes (left and right: |dc| > |dr|; above and below: |dr| > |dc|; exact
+// diagonals count in none). A pixel outside a straight or convex edge of the
+// swath has all its sources in one half-plane, which never meets two
+// opposite cones, so holes between lines and samples are closed but the
+// swath is never grown outwards, and nothing is invented farther than the
+// radius (set from the line spacing by the caller). Its ancillary values are those of the nearest observed pixel
+// used. Pixels still empty stay NaN (spectrum and ancillary).
+//
+// Tiles and halo. The tile owns grid rows [row_begin, row_end) and also
+// accumulates `halo` rows above and below them, so that filling near its
+// edges sees the same neighbours as anywhere else; a caller feeding every
+// line that reaches [row_begin - halo, row_end + halo) gets, for the owned
+// rows, exactly what one accumulator over the whole grid would give.
+//
+// Memory: (bands + 6) * 4 bytes per pixel of (rows + 2 halo) x cols.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "pipelines/hyperspectral/ortho_grid.h"
+
+namespace hsmap {
+
+// One hit to add: continuous pixel coordinates of p_W (OrthoGrid::pixelOfUtm),
+// its spectrum (`bands` contiguous floats), and its ancillary values.
+struct OrthoHit {
+  Eigen::Vector2d col_row;
+  const float* spectrum = nullptr;
+  float line = 0, sample = 0, range_m = 0, incidence_deg = 0;
+};
+
+class OrthoTileAccumulator {
+ public:
+  // std::invalid_argument for an empty row range or one outside the grid,
+  // non-positive bands or a negative halo.
+  OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin, int row_end, int halo);
+
+  // Starts over on owned rows [row_begin, row_end) (same grid, bands and
+  // halo), keeping the buffers: a stage that runs tile after tile allocates
+  // (and the kernel maps) the memory once, not once per tile, which on the
+  // project's virtual machine costs more than the accumulation itself.
+  void reset(int row_begin, int row_end);
+
+  int rowBegin() const { return row_begin_; }
+  int rowEnd() const { return row_end_; }
+  // Rows the tile accumulates: owned rows plus the halo, clipped to the grid.
+  int firstRow() const { return first_row_; }
+  int lastRow() const { return last_row_; }  // exclusive
+
+  // Adds a hit if its pixel lies in [firstRow(), lastRow()) and inside the
+  // grid's columns; returns whether the pixel is one of the OWNED rows (so
+  // the caller can count every hit once over all tiles). Not thread-safe.
+  bool add(const OrthoHit& hit);
+  // Whether a pixel position lies in the owned rows.
+  bool owns(const Eigen::Vector2d& col_row) const;
+
+  // Means and gap filling (see above). Call once, after the last add().
+  void finish(int fill_radius_px);
+
+  // After finish(): owned row `row` band-major, out[b * cols + c] (bands x
+  // cols floats), NaN where empty: the layout of an ENVI line.
+  void spectraRow(int row, float* out) const;
+  // After finish(): owned row `row` of the 4 ancillary bands (4 x cols).
+  void ancillaryRow(int row, float* out) const;
+
+  // Over the owned rows, after finish().
+  std::int64_t observedPixels() const { return observed_owned_; }
+  std::int64_t filledPixels() const { return filled_owned_; }
+
+  // Bytes a tile of `rows` rows (halo included) takes.
+  static std::int64_t bytesPerRow(int cols, int bands);
+
+ private:
+  enum : std::uint8_t { kEmpty = 0, kObserved = 1, kFilled = 2 };
+  std::size_t index(int row, int col) const {
+    return std::size_t(row - first_row_) * std::size_t(cols_) + std::size_t(col);
+  }
+
+  int rows_, cols_, bands_, halo_, row_begin_ = 0, row_end_ = 0, first_row_ = 0, last_row_ = 0;
+  bool finished_ = false;
+  std::vector<float> sums_;             // pixel-major: [pixel * bands + b]
+  std::vector<std::uint32_t> counts_;
+  std::vector<std::uint8_t> state_;
+  std::vector<float> best_d2_;          // squared distance (px^2) of the nearest hit to the centre
+  std::vector<Eigen::Vector4f> ancillary_;  // line, sample, range, incidence
+  std::int64_t observed_owned_ = 0, filled_owned_ = 0;
+};
+
+}  // namespace hsmap

@@ -1,0 +1,101 @@
+// Spectra that are NaN in a band, or hold the cube's `data ignore value`, are
+// counted and never painted into the ortho-image.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "core/io/envi_reader.h"
+#include "core/io/envi_writer.h"
+#include "core/io/ply_io.h"
+#include "pipelines/hyperspectral/hyperspectral_ortho.h"
+#include "pipelines/hyperspectral/scan_line_caster.h"
+#include "tests/pipelines/hyperspectral/tiny_products_fixture.h"
+#include "tests/support/temp_folder.h"
+
+namespace hsmap {
+namespace {
+
+using testing::tinyProductsSurvey;
+
+constexpr int kNanSample = 100;     // band 3 NaN in every line
+constexpr int kIgnoreSample = 50;   // every band = the data ignore value
+constexpr float kIgnoreValue = -1.0f;
+
+// A float32 copy of the survey's cube with the two samples spoiled.
+std::filesystem::path spoiledCube(const EnviReader& cube, const std::filesystem::path& folder) {
+  EnviHeader header = cube.header();
+  header.data_type = EnviDataType::float32;
+  header.interleave = EnviInterleave::bil;
+  header.byte_order = 0;
+  header.header_offset = 0;
+  header.other_fields.emplace_back("data ignore value", "-1");
+  const std::filesystem::path hdr = folder / "cube.hdr";
+  EnviWriter writer(hdr, header);
+  Eigen::MatrixXf line;
+  for (int l = 0; l < cube.lines(); ++l) {
+    cube.readLine(l, line);
+    line(3, kNanSample) = std::numeric_limits<float>::quiet_NaN();
+    line.col(kIgnoreSample).setConstant(kIgnoreValue);
+    writer.writeLine(line);
+  }
+  writer.finish();
+  return hdr;
+}
+
+TEST(InvalidSpectra, AreCountedAndNotPainted) {
+  testing::TempFolder folder;
+  Survey survey = loadSurvey(tinyProductsSurvey().folder);
+  survey.cube = std::make_unique<EnviReader>(spoiledCube(*survey.cube, folder.path()));
+
+  // How many hits the two samples have (the same casting the stage does).
+  const PlyMesh ply = readPly(tinyProductsSurvey().scene_ply);
+  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  const PushbroomCamera camera(survey.config.uhi.camera);
+  const ScanLineCaster caster(camera, mesh);
+  std::int64_t nan_hits = 0, ignore_hits = 0;
+  ScanLineHits hits;
+  for (const LinePose& pose : tinyProductsSurvey().true_line_poses) {
+    caster.castLine(pose.line, pose.T, hits);
+    nan_hits += hits.hit(kNanSample) ? 1 : 0;
+    ignore_hits += hits.hit(kIgnoreSample) ? 1 : 0;
+  }
+  ASSERT_GT(nan_hits, 50);
+  ASSERT_GT(ignore_hits, 50);
+
+  HyperspectralOptions options;
+  options.write_geotiff = false;
+  options.write_quicklook = false;
+  std::ostringstream log;
+  const HyperspectralReport report = writeHyperspectralProducts(
+      survey, tinyProductsSurvey().true_line_poses, tinyProductsSurvey().scene_ply, folder / "out", options, log);
+  EXPECT_EQ(report.skipped_non_finite, nan_hits);
+  EXPECT_EQ(report.skipped_ignore_value, ignore_hits);
+  EXPECT_EQ(report.painted, report.hits - nan_hits - ignore_hits);
+
+  // No ortho pixel comes from the spoiled samples, and no value is NaN in
+  // some bands only or holds the ignore value.
+  const EnviReader ortho(folder / "out" / "ortho.hdr");
+  const EnviReader ancillary(folder / "out" / "ancillary.hdr");
+  Eigen::MatrixXf o, a;
+  std::int64_t valid = 0;
+  for (int r = 0; r < ortho.lines(); ++r) {
+    ortho.readLine(r, o);
+    ancillary.readLine(r, a);
+    for (int c = 0; c < ortho.samples(); ++c) {
+      const bool any_finite = o.col(c).array().isFinite().any();
+      if (!any_finite) continue;
+      ++valid;
+      ASSERT_TRUE(o.col(c).array().isFinite().all()) << r << " " << c;
+      ASSERT_FALSE((o.col(c).array() == kIgnoreValue).any()) << r << " " << c;
+      ASSERT_NE(a(1, c), float(kNanSample));
+      ASSERT_NE(a(1, c), float(kIgnoreSample));
+    }
+  }
+  EXPECT_GT(valid, 1000);
+}
+
+}  // namespace
+}  // namespace hsmap

@@ -1,0 +1,119 @@
+// OrthoTileAccumulator: the mean of the hits in a pixel, the nearest hit's
+// ancillary values, gap filling only between observed pixels, tiles with a
+// halo equal to one accumulator over the whole grid.
+#include "pipelines/hyperspectral/ortho_accumulator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace hsmap {
+namespace {
+
+OrthoGrid smallGrid(int cols, int rows) {
+  OrthoGrid grid;
+  grid.pixel_m = 0.01;
+  grid.west_m = 1000.0;
+  grid.north_m = 2000.0;
+  grid.cols = cols;
+  grid.rows = rows;
+  grid.zone = 31;
+  return grid;
+}
+
+OrthoHit hitAt(double col, double row, const std::vector<float>& spectrum, float line = 0, float sample = 0) {
+  OrthoHit hit;
+  hit.col_row = Eigen::Vector2d(col, row);
+  hit.spectrum = spectrum.data();
+  hit.line = line;
+  hit.sample = sample;
+  hit.range_m = 1.5f;
+  hit.incidence_deg = 10.0f;
+  return hit;
+}
+
+TEST(OrthoTileAccumulator, PixelIsTheMeanOfItsHitsAndKeepsTheNearestHitsAncillary) {
+  const OrthoGrid grid = smallGrid(5, 4);
+  OrthoTileAccumulator tile(grid, 2, 0, 4, 0);
+  const std::vector<float> a{1.0f, 10.0f}, b{3.0f, 30.0f};
+  EXPECT_TRUE(tile.add(hitAt(2.3, 1.4, a, 7, 11)));
+  EXPECT_TRUE(tile.add(hitAt(1.9, 0.9, b, 8, 12)));  // nearer the centre of (2, 1)
+  EXPECT_FALSE(tile.add(hitAt(-0.6, 1.0, a)));      // outside the grid
+  tile.finish(0);
+  std::vector<float> row(2 * 5), ancillary(4 * 5);
+  tile.spectraRow(1, row.data());
+  EXPECT_FLOAT_EQ(row[0 * 5 + 2], 2.0f);
+  EXPECT_FLOAT_EQ(row[1 * 5 + 2], 20.0f);
+  EXPECT_TRUE(std::isnan(row[0 * 5 + 1]));
+  tile.ancillaryRow(1, ancillary.data());
+  EXPECT_FLOAT_EQ(ancillary[0 * 5 + 2], 8.0f);
+  EXPECT_FLOAT_EQ(ancillary[1 * 5 + 2], 12.0f);
+  EXPECT_FLOAT_EQ(ancillary[2 * 5 + 2], 1.5f);
+  EXPECT_FLOAT_EQ(ancillary[3 * 5 + 2], 10.0f);
+  EXPECT_TRUE(std::isnan(ancillary[0 * 5 + 3]));
+  EXPECT_EQ(tile.observedPixels(), 1);
+  EXPECT_EQ(tile.filledPixels(), 0);
+}
+
+TEST(OrthoTileAccumulator, FillsHolesBetweenObservedPixelsButNeverGrowsTheEdge) {
+  // Observed columns 0 and 2 of every row; column 1 is a hole between them,
+  // columns 3.. lie outside the swath.
+  const OrthoGrid grid = smallGrid(6, 3);
+  OrthoTileAccumulator tile(grid, 1, 0, 3, 1);
+  const std::vector<float> left{2.0f}, right{4.0f};
+  for (int r = 0; r < 3; ++r) {
+    tile.add(hitAt(0, r, left));
+    tile.add(hitAt(2, r, right));
+  }
+  tile.finish(2);
+  std::vector<float> row(6);
+  for (int r = 0; r < 3; ++r) {
+    tile.spectraRow(r, row.data());
+    EXPECT_FLOAT_EQ(row[1], 3.0f) << "row " << r;  // symmetric neighbours: their mean
+    for (int c = 3; c < 6; ++c) EXPECT_TRUE(std::isnan(row[c])) << "row " << r << " col " << c;
+  }
+  EXPECT_EQ(tile.observedPixels(), 6);
+  EXPECT_EQ(tile.filledPixels(), 3);
+}
+
+TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
+  const OrthoGrid grid = smallGrid(20, 30);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> col(-0.5, 19.5), row(-0.5, 29.5);
+  std::vector<std::vector<float>> spectra;
+  std::vector<Eigen::Vector2d> where;
+  for (int i = 0; i < 250; ++i) {
+    spectra.push_back({float(i), float(2 * i)});
+    where.emplace_back(col(rng), row(rng));
+  }
+  auto run = [&](int row_begin, int row_end, std::vector<float>& out) {
+    OrthoTileAccumulator tile(grid, 2, row_begin, row_end, 2);
+    for (std::size_t i = 0; i < where.size(); ++i) tile.add(hitAt(where[i].x(), where[i].y(), spectra[i]));
+    tile.finish(2);
+    std::vector<float> line(2 * 20);
+    for (int r = row_begin; r < row_end; ++r) {
+      tile.spectraRow(r, line.data());
+      out.insert(out.end(), line.begin(), line.end());
+    }
+    return tile.filledPixels();
+  };
+  std::vector<float> whole, tiled;
+  const auto filled_whole = run(0, 30, whole);
+  std::int64_t filled_tiles = 0;
+  for (int r = 0; r < 30; r += 7) filled_tiles += run(r, std::min(30, r + 7), tiled);
+  ASSERT_EQ(whole.size(), tiled.size());
+  EXPECT_GT(filled_whole, 0);
+  EXPECT_EQ(filled_whole, filled_tiles);
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    if (std::isnan(whole[i])) {
+      EXPECT_TRUE(std::isnan(tiled[i])) << i;
+    } else {
+      EXPECT_FLOAT_EQ(whole[i], tiled[i]) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hsmap
