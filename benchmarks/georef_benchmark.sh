@@ -15,16 +15,8 @@
 # Figures are recorded in docs/BENCHMARKS.md.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-surveys=()
-build="build"
-while [[ $# -gt 0 ]]; do
-  if [[ $1 == "--" ]]; then build="$2"; break; fi
-  surveys+=("$1"); shift
-done
-((${#surveys[@]} > 0)) || { echo "usage: $0 SURVEY... [-- BUILD_DIR]" >&2; exit 2; }
-hsmap="$build/tools/hsmap"
-[[ -x "$hsmap" ]] || { echo "error: $hsmap not found; build it with scripts/build.sh --target hsmap" >&2; exit 1; }
-work="${WORK_DIR:-/tmp}"
+# shellcheck source=benchmarks/survey_arguments.sh
+source "$here/survey_arguments.sh"
 runs=()
 timing_rows=()
 for survey in "${surveys[@]}"; do
