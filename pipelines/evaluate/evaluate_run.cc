@@ -2,6 +2,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/results_folder.h"
+#include "core/survey/number_text.h"
 #include "pipelines/evaluate/calibration_metrics.h"
 #include "pipelines/evaluate/ins_floor.h"
 #include "pipelines/evaluate/mesh_metrics.h"
@@ -63,6 +64,7 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
     const std::string summary = ortho.summary();
     metrics.ortho_patches = summary.substr(0, summary.find('\n'));
   }
+  metrics.ortho_matches = ortho.matches;
 
   for (const StageRecord& stage : inputs.run.stages) {
     metrics.timings_s.emplace_back(stage.name, stage.time_s);
@@ -84,6 +86,19 @@ EvaluationReport evaluateRunFolder(const std::filesystem::path& run_folder,
   report.metrics = evaluateRun(inputs);
   report.warnings = inputs.warnings;
   report.metrics_path = run_folder / results_paths::metrics_json;
+  if (!report.metrics.ortho_matches.empty()) {
+    report.ortho_patches_path = run_folder / results_paths::report_dir / "ortho_patches.csv";
+    std::filesystem::create_directories(report.ortho_patches_path.parent_path());
+    AtomicFile patches(report.ortho_patches_path);
+    patches.stream() << "north_m,east_m,displacement_north_m,displacement_east_m,response\n";
+    for (const OrthoPatchMatch& match : report.metrics.ortho_matches) {
+      patches.stream() << formatDouble(match.centre_NE.x()) << ',' << formatDouble(match.centre_NE.y())
+                       << ',' << formatDouble(match.displacement_NE.x()) << ','
+                       << formatDouble(match.displacement_NE.y()) << ','
+                       << formatDouble(match.response) << '\n';
+    }
+    patches.commit();
+  }
   AtomicFile out(report.metrics_path);
   out.stream() << metricsJson(report.metrics);
   out.commit();

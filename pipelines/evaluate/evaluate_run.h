@@ -14,7 +14,8 @@
 // floor (ins_floor.h).
 //
 // evaluateRunFolder() is the whole command: load, compute, write
-// RUN/metrics.json atomically. It throws InputError for bad input.
+// RUN/metrics.json atomically, and the ortho-image's matched patches to
+// RUN/report/ortho_patches.csv. It throws InputError for bad input.
 
 #include <filesystem>
 
@@ -28,6 +29,9 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs);
 struct EvaluationReport {
   EvaluationMetrics metrics;
   std::filesystem::path metrics_path;  // RUN/metrics.json, written
+  // RUN/report/ortho_patches.csv (each matched patch's centre in W, its
+  // displacement and response), written when the ortho-image was measured.
+  std::filesystem::path ortho_patches_path;
   std::vector<std::string> warnings;   // from loading (evaluation_inputs.h)
 };
 

@@ -22,6 +22,8 @@
 
 #include "pipelines/evaluate/metric_value.h"
 
+#include "pipelines/evaluate/ortho_metrics.h"
+
 namespace hsmap {
 
 struct EvaluationMetrics {
@@ -47,6 +49,9 @@ struct EvaluationMetrics {
   // For the table only (not in metrics.json): the ortho-image's patch counts
   // (OrthoMetrics::summary()'s first line), empty when it was not measured.
   std::string ortho_patches;
+  // Not in metrics.json: every matched patch (evaluateRunFolder writes them
+  // to RUN/report/ortho_patches.csv).
+  std::vector<OrthoPatchMatch> ortho_matches;
   // Stage name -> wall time (s), in the order the stages ran, then "total".
   std::vector<std::pair<std::string, double>> timings_s;
   MetricValue peak_rss_mb;

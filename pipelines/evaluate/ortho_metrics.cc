@@ -1,5 +1,7 @@
 #include "pipelines/evaluate/ortho_metrics.h"
 
+#include "pipelines/evaluate/band_limited_phase_correlation.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -279,7 +281,8 @@ struct PatchResult {
 
 PatchResult measurePatch(const cv::Mat& truth_mean, const cv::Mat& produced_mean,
                          const ProducedLookup& lookup, const cv::Mat& hann, int r0, int c0, int side,
-                         const Eigen::Vector2d& start_px, const OrthoMetricsOptions& options) {
+                         const Eigen::Vector2d& start_px, double pixel_m,
+                         const OrthoMetricsOptions& options) {
   PatchResult result;
   const cv::Size size(side, side);
   cv::Mat truth;
@@ -292,6 +295,7 @@ PatchResult measurePatch(const cv::Mat& truth_mean, const cv::Mat& produced_mean
   }
   result.has_data = true;
   if (!normalise(truth)) return result;
+  const double cutoff_px = options.correlation_cutoff_m / pixel_m;
   double last_correction = std::numeric_limits<double>::infinity();
   // The refined estimates (after the first correction) wander about the
   // displacement by the estimator's noise; their mean is the measurement.
@@ -303,9 +307,10 @@ PatchResult measurePatch(const cv::Mat& truth_mean, const cv::Mat& produced_mean
       if (validFraction(produced) < options.min_valid_fraction) return result;
     }
     if (!normalise(produced)) return result;
-    double response = 0;
     // The shift of `produced` relative to `truth`: produced(x) = truth(x - s).
-    const cv::Point2d s = cv::phaseCorrelate(truth, produced, hann, &response);
+    const PhaseCorrelation correlation = bandLimitedPhaseCorrelate(truth, produced, hann, cutoff_px);
+    const cv::Point2d s = correlation.shift;
+    const double response = correlation.response;
     offset += Eigen::Vector2d(s.y, s.x);
     if (iteration >= 1) {
       sum_refined += offset;
@@ -339,9 +344,9 @@ std::optional<Eigen::Vector2d> coarseShift(const cv::Mat& truth_mean, const cv::
   }
   cv::Mat hann;
   cv::createHanningWindow(hann, coarse, CV_64F);
-  double response = 0;
-  const cv::Point2d s = cv::phaseCorrelate(truth, produced, hann, &response);
-  if (!(response >= options.coarse_min_response)) return std::nullopt;
+  const PhaseCorrelation correlation = bandLimitedPhaseCorrelate(truth, produced, hann, 0.0);
+  const cv::Point2d s = correlation.shift;
+  if (!(correlation.response >= options.coarse_min_response)) return std::nullopt;
   return Eigen::Vector2d(s.y * truth_mean.rows / coarse.height, s.x * truth_mean.cols / coarse.width);
 }
 
@@ -475,6 +480,8 @@ void OrthoMetricsOptions::validate() const {
   require(max_sam_pixels > 0, "max_sam_pixels must be > 0");
   require(sam_chunk_bytes > 0, "sam_chunk_bytes must be > 0");
   require(std::isfinite(reference_down_m), "reference_down_m must be finite");
+  require(std::isfinite(correlation_cutoff_m) && correlation_cutoff_m >= 0.0,
+          "correlation_cutoff_m must be finite and >= 0");
 }
 
 std::string OrthoMetrics::summary() const {
@@ -495,7 +502,13 @@ std::string OrthoMetrics::summary() const {
       << " pixels, stride " << sam_stride << (sam_registered ? ", at the registered position" : ", as placed")
       << ")\n";
   out << "  ortho_coverage             " << formatFigure(ortho_coverage) << "  (" << covered_pixels
-      << " of " << footprint_pixels << " footprint pixels)\n";
+      << " of " << footprint_pixels << " footprint pixels";
+  if (coverage_registered) {
+    out << ", registered; as placed " << covered_pixels_as_placed;
+  } else {
+    out << ", as placed";
+  }
+  out << ")\n";
   return out.str();
 }
 
@@ -557,7 +570,7 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
       for (int k = range.begin(); k != range.end(); ++k) {
         const int r0 = top + (k / patch_cols) * side, c0 = left + (k % patch_cols) * side;
         results[static_cast<std::size_t>(k)] = measurePatch(truth_mean, produced_mean, as_placed, hann, r0,
-                                                            c0, side, start_px, options);
+                                                            c0, side, start_px, truth.px, options);
       }
     });
   }
@@ -615,6 +628,27 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
       metrics.ortho_registration_rmse_m = metrics.ortho_scale_error =
           MetricValue::missing("the matched patches share one centre: no similarity");
     }
+  }
+
+  // Coverage at the registered position when the registration was
+  // measured: what the product covers, apart from where the INS placed it
+  // (ortho_mean_shift_m reports that).
+  if (similarity) {
+    const ProducedLookup registered(truth, produced, utm, options.reference_down_m, similarity->M,
+                                    similarity->t);
+    std::int64_t covered = 0;
+    for (int r = 0; r < truth.rows; ++r) {
+      const float* truth_row = truth_mean.ptr<float>(r);
+      for (int c = 0; c < truth.cols; ++c) {
+        if (std::isnan(truth_row[c])) continue;
+        const auto pixel = nearestPixel(registered.at(r, c), produced.rows, produced.cols);
+        if (pixel && !std::isnan(produced_mean.at<float>(pixel->first, pixel->second))) ++covered;
+      }
+    }
+    metrics.covered_pixels_as_placed = metrics.covered_pixels;
+    metrics.covered_pixels = covered;
+    metrics.coverage_registered = true;
+    metrics.ortho_coverage = MetricValue::of(static_cast<double>(covered) / metrics.footprint_pixels);
   }
 
   // Spectral angle.

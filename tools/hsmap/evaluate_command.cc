@@ -36,7 +36,9 @@ int runEvaluateCommand(const EvaluateOptions& options, std::ostream& out) {
   const EvaluationReport report = evaluateRunFolder(options.run, options.truth);
   for (const std::string& warning : report.warnings) out << "warning: " << warning << "\n";
   printMetricsTable(out, report.metrics);
-  out << "wrote " << report.metrics_path.string() << "\n";
+  out << "wrote " << report.metrics_path.string();
+  if (!report.ortho_patches_path.empty()) out << " and " << report.ortho_patches_path.string();
+  out << "\n";
   return 0;
 }
 
