@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -16,7 +18,15 @@
 
 namespace hsmap {
 
-EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header)
+namespace {
+// O_DIRECT transfers: offsets, sizes and buffers aligned to this (the page
+// size, a multiple of every common logical block size).
+constexpr std::size_t kDirectAlignment = 4096;
+// Bytes per direct write: large enough to keep the device busy.
+constexpr std::size_t kDirectChunk = std::size_t(32) << 20;
+}  // namespace
+
+EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header, EnviWriteMode mode)
     : hdr_path_(hdr_path), header_(std::move(header)) {
   if (hdr_path_.extension() != ".hdr") {
     throw std::invalid_argument("EnviWriter: header path must end in .hdr, got " + hdr_path_.string());
@@ -45,7 +55,13 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header)
 
   std::error_code ec;
   std::filesystem::remove(partial_path_, ec);
-  fd_ = ::open(partial_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  direct_ = mode == EnviWriteMode::direct && header_.interleave != EnviInterleave::bsq &&
+            header_.header_offset == 0;
+  if (direct_) {
+    fd_ = ::open(partial_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_DIRECT, 0644);
+    if (fd_ < 0) direct_ = false;  // e.g. tmpfs: EINVAL; retried below without O_DIRECT
+  }
+  if (fd_ < 0) fd_ = ::open(partial_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     throw std::runtime_error("cannot create " + partial_path_.string() + ": " + std::strerror(errno));
   }
@@ -56,6 +72,17 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header)
     throw std::runtime_error("cannot write " + partial_path_.string() + ": " + std::strerror(error));
   }
   const std::size_t line_values = static_cast<std::size_t>(header_.samples) * header_.bands;
+  if (direct_) {
+    // Room for a chunk plus one line and the partial block kept over.
+    const std::size_t line_bytes = line_values * value_bytes_;
+    staging_capacity_ =
+        (kDirectChunk + line_bytes + 2 * kDirectAlignment) / kDirectAlignment * kDirectAlignment;
+    staging_ = {static_cast<std::byte*>(std::aligned_alloc(kDirectAlignment, staging_capacity_)), std::free};
+    if (!staging_) {
+      abandon();
+      throw std::bad_alloc();
+    }
+  }
   encoded_.resize(line_values * value_bytes_);
   if (header_.interleave == EnviInterleave::bip) pixel_major_.resize(line_values);
 }
@@ -84,6 +111,31 @@ void EnviWriter::writeAt(const std::byte* bytes, std::size_t size, std::size_t o
   }
 }
 
+void EnviWriter::flushStagedBlocks() {
+  const std::size_t whole = staged_ / kDirectAlignment * kDirectAlignment;
+  if (whole == 0) return;
+  std::size_t done = 0;
+  while (done < whole) {
+    const ssize_t written =
+        ::pwrite(fd_, staging_.get() + done, whole - done, static_cast<off_t>(staged_offset_ + done));
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      if (errno == EINVAL) {
+        // The file system took O_DIRECT on open but not for writes: go on buffered.
+        const int flags = ::fcntl(fd_, F_GETFL);
+        if (flags >= 0 && ::fcntl(fd_, F_SETFL, flags & ~O_DIRECT) == 0) continue;
+      }
+      throw std::runtime_error("writing " + partial_path_.string() + " failed: " + std::strerror(errno));
+    }
+    // A short write that stops inside a block makes the next one unaligned:
+    // EINVAL, and the rest goes on buffered (above).
+    done += static_cast<std::size_t>(written);
+  }
+  std::memmove(staging_.get(), staging_.get() + whole, staged_ - whole);
+  staged_ -= whole;
+  staged_offset_ += whole;
+}
+
 void EnviWriter::writeLine(const Eigen::MatrixXf& line) {
   if (line.rows() != header_.bands || line.cols() != header_.samples) {
     throw std::invalid_argument("EnviWriter::writeLine: expected a " + std::to_string(header_.bands) +
@@ -106,6 +158,22 @@ void EnviWriter::writeLine(const float* band_major_line) {
   const std::size_t line_bytes = line_values * value_bytes_;
   const std::size_t line = static_cast<std::size_t>(lines_written_);
   const std::size_t offset = header_.header_offset;
+
+  if (direct_) {
+    // Appended to the staging buffer (BIL/BIP lines are consecutive).
+    if (staged_ + line_bytes > staging_capacity_) flushStagedBlocks();
+    std::byte* target = staging_.get() + staged_;
+    if (header_.interleave == EnviInterleave::bip) {
+      transposeFloats(band_major_line, bands, samples, samples, pixel_major_.data(), bands);
+      encodeSamples(header_.data_type, swap_bytes_, pixel_major_.data(), target, line_values);
+    } else {
+      encodeSamples(header_.data_type, swap_bytes_, band_major_line, target, line_values);
+    }
+    staged_ += line_bytes;
+    if (staged_ >= kDirectChunk) flushStagedBlocks();
+    ++lines_written_;
+    return;
+  }
 
   switch (header_.interleave) {
     case EnviInterleave::bil:
@@ -141,6 +209,19 @@ void EnviWriter::finish() {
     throw std::logic_error("EnviWriter " + hdr_path_.string() + ": wrote " +
                            std::to_string(lines_written_) + " of " + std::to_string(header_.lines) +
                            " lines");
+  }
+  if (direct_) {
+    flushStagedBlocks();
+    if (staged_ > 0) {
+      // The last partial block: through the page cache (O_DIRECT needs whole blocks).
+      const int flags = ::fcntl(fd_, F_GETFL);
+      if (flags < 0 || ::fcntl(fd_, F_SETFL, flags & ~O_DIRECT) != 0) {
+        throw std::runtime_error("writing " + partial_path_.string() + " failed: " + std::strerror(errno));
+      }
+      writeAt(staging_.get(), staged_, staged_offset_);
+      staged_offset_ += staged_;
+      staged_ = 0;
+    }
   }
   const int fd = std::exchange(fd_, -1);
   if (::close(fd) != 0) {

@@ -15,6 +15,18 @@
 // the lines written" (finish() records the count). A header offset is
 // written as zero bytes before the data.
 //
+// Write modes (EnviWriteMode):
+// - buffered (default): each line is one pwrite through the page cache.
+// - direct: for BIL/BIP with no header offset, lines are encoded into a 32 MB
+//   staging buffer that goes to disk with O_DIRECT in whole 4 KB blocks
+//   (the tail, at finish(), through the page cache). Measured on the project's
+//   virtual machine: 1.3 GB/s against 0.2 GB/s buffered for a multi-GB file
+//   (the page cache's writeback is the limit, and writing GBs through it also
+//   evicts the input being read). For files much larger than the page cache
+//   read back later by nobody soon, e.g. a hyperspectral ortho-image. Where
+//   the file system refuses O_DIRECT (tmpfs), or for BSQ or a header offset,
+//   it writes like buffered. The files are the same bytes in either mode.
+//
 // Conversion (envi_sample_codec.h): integers are rounded and clamped, NaN
 // becomes 0. Header problems (non-positive samples/bands, list sizes not
 // matching bands, hdr path not ending in .hdr) are std::invalid_argument;
@@ -23,6 +35,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,9 +44,12 @@
 
 namespace hsmap {
 
+enum class EnviWriteMode { buffered, direct };
+
 class EnviWriter {
  public:
-  EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header);
+  EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header,
+             EnviWriteMode mode = EnviWriteMode::buffered);
   ~EnviWriter();
   EnviWriter(const EnviWriter&) = delete;
   EnviWriter& operator=(const EnviWriter&) = delete;
@@ -41,6 +57,8 @@ class EnviWriter {
   const EnviHeader& header() const { return header_; }
   const std::filesystem::path& headerPath() const { return hdr_path_; }
   const std::filesystem::path& dataPath() const { return data_path_; }
+  // Whether lines go out with O_DIRECT (direct asked for and possible).
+  bool direct() const { return direct_; }
   int linesWritten() const { return lines_written_; }
 
   // One line, band-major: bands * samples floats.
@@ -52,6 +70,8 @@ class EnviWriter {
 
  private:
   void writeAt(const std::byte* bytes, std::size_t size, std::size_t offset);
+  // Direct mode: writes the staged whole blocks, keeps the partial last one.
+  void flushStagedBlocks();
   void abandon() noexcept;
 
   std::filesystem::path hdr_path_;
@@ -66,6 +86,12 @@ class EnviWriter {
   bool finished_ = false;
   std::vector<std::byte> encoded_;
   std::vector<float> pixel_major_;
+  // Direct mode: block-aligned staging buffer, bytes in it, file offset of its start.
+  bool direct_ = false;
+  std::unique_ptr<std::byte, void (*)(void*)> staging_{nullptr, nullptr};
+  std::size_t staging_capacity_ = 0;
+  std::size_t staged_ = 0;
+  std::size_t staged_offset_ = 0;
 };
 
 }  // namespace hsmap
