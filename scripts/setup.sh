@@ -16,6 +16,7 @@ PACKAGES=(
   libeigen3-dev libceres-dev libsuitesparse-dev
   libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev libgdal-dev
   libtbb-dev libcli11-dev libyaml-cpp-dev
+  gdal-bin  # GDAL's command-line tools: gdalinfo (tests), gdal_translate (benchmarks)
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 for flag in "$@"; do

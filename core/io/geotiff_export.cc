@@ -15,6 +15,10 @@
 #include <type_traits>
 #include <vector>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <cpl_string.h>
@@ -196,16 +200,89 @@ std::unique_ptr<std::remove_pointer_t<OGRSpatialReferenceH>, SpatialReferenceDel
   return srs;
 }
 
-// Removes what GDAL may leave next to `partial` when writing fails half-way
-// (COG keeps its overviews in `<name>.ovr.tmp` until the end).
+// Removes the export's working files next to `partial` (the VRT and its
+// overviews, below) and what GDAL may leave there when writing fails half-way.
 void removeGdalLeftovers(const std::filesystem::path& partial) {
-  for (const char* suffix : {".ovr.tmp", ".msk.ovr.tmp", ".aux.xml"}) {
+  for (const char* suffix : {".vrt", ".vrt.ovr", ".ovr.tmp", ".msk.ovr.tmp", ".aux.xml"}) {
     std::filesystem::path leftover = partial;
     leftover += suffix;
     std::error_code ignored;
     std::filesystem::remove(leftover, ignored);
   }
 }
+
+// GDAL's block cache is one per process and by default 5% of the RAM: every
+// ENVI line the export reads stays in it until it is full (1.2 GB on a 24 GB
+// machine). While any export runs the cache is capped at
+// kExportBlockCacheBytes (the export reads each band's lines once per tile row
+// of 512 lines, a few MB); the last export to finish restores the caller's
+// limit. A lower limit set by the caller is kept.
+constexpr GIntBig kExportBlockCacheBytes = GIntBig{64} << 20;
+
+class BlockCacheLimit {
+ public:
+  BlockCacheLimit() {
+    const std::lock_guard<std::mutex> lock(mutex());
+    State& s = state();
+    if (s.active++ == 0) {
+      s.previous = GDALGetCacheMax64();
+      if (s.previous > kExportBlockCacheBytes) GDALSetCacheMax64(kExportBlockCacheBytes);
+    }
+  }
+  ~BlockCacheLimit() {
+    const std::lock_guard<std::mutex> lock(mutex());
+    State& s = state();
+    if (--s.active == 0 && GDALGetCacheMax64() == std::min(s.previous, kExportBlockCacheBytes)) {
+      GDALSetCacheMax64(s.previous);
+    }
+  }
+  BlockCacheLimit(const BlockCacheLimit&) = delete;
+  BlockCacheLimit& operator=(const BlockCacheLimit&) = delete;
+
+ private:
+  struct State {
+    int active = 0;
+    GIntBig previous = 0;
+  };
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static State& state() {
+    static State s;
+    return s;
+  }
+};
+
+// Overview decimation factors as GDAL's COG driver chooses them: halving
+// until the image fits in one tile (600 x 4000 with 512 tiles: 2, 4, 8).
+std::vector<int> overviewFactors(int cols, int rows, int block_size) {
+  std::vector<int> factors;
+  for (int f = 2; (cols + f / 2 - 1) / (f / 2) > block_size || (rows + f / 2 - 1) / (f / 2) > block_size;
+       f *= 2) {
+    factors.push_back(f);
+  }
+  return factors;
+}
+
+// A GDAL progress callback that hands memory freed by GDAL back to the
+// system every 16 calls (GDAL calls it per tile or chunk of lines). glibc's
+// malloc otherwise keeps it in its heaps: after a large block is freed (the
+// GTiff copy allocates a buffer for one tile of all bands), its mmap
+// threshold rises, so the 1 MB tiles of the block cache and of the
+// compression threads come from heaps that fragment and grow with the image.
+// Peak RSS for the 2 GB ortho of docs/BENCHMARKS.md: 807 MB without the trim,
+// about 250 MB with it; a few % more system time.
+int CPL_STDCALL trimFreedMemory(double, const char*, void* calls) {
+#ifdef __GLIBC__
+  if (++*static_cast<int*>(calls) % 16 == 0) malloc_trim(0);
+#endif
+  return TRUE;
+}
+
+// GDAL's TIFF predictor for `type`: floating-point (3) or horizontal
+// differencing (2).
+const char* predictorFor(EnviDataType type) { return isFloat(type) ? "3" : "2"; }
 
 }  // namespace
 
@@ -254,7 +331,8 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
   // from claiming a .raw file.
   const char* const envi_only[] = {"ENVI", nullptr};
   GdalDataset source(
-      GDALOpenEx(data_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, envi_only, nullptr, nullptr));
+      GDALOpenEx(std::filesystem::absolute(data_path).c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, envi_only,
+                 nullptr, nullptr));
   if (!source) {
     throw InputError(data_path, "", "GDAL's ENVI driver cannot read it: " + errors.message());
   }
@@ -310,31 +388,94 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
                              errors.message());
   }
 
-  GDALDriverH cog = GDALGetDriverByName("COG");
-  if (cog == nullptr) {
-    throw std::runtime_error("cannot write " + tif_path.string() +
-                             ": this GDAL has no COG driver (GDAL >= 3.1 needed)");
+  GDALDriverH vrt_driver = GDALGetDriverByName("VRT");
+  GDALDriverH gtiff = GDALGetDriverByName("GTiff");
+  if (vrt_driver == nullptr || gtiff == nullptr) {
+    throw std::runtime_error("cannot write " + tif_path.string() + ": this GDAL has no VRT or GTiff driver");
   }
-  CPLStringList creation;
-  creation.SetNameValue("COMPRESS", options.compression.c_str());
-  creation.SetNameValue("PREDICTOR", options.predictor && options.compression != "NONE" ? "YES" : "NO");
-  creation.SetNameValue("BLOCKSIZE", std::to_string(options.block_size).c_str());
-  creation.SetNameValue("OVERVIEWS", options.overviews ? "AUTO" : "NONE");
-  creation.SetNameValue("RESAMPLING", options.overview_resampling.c_str());
-  creation.SetNameValue("NUM_THREADS",
-                        options.threads == 0 ? "ALL_CPUS" : std::to_string(options.threads).c_str());
-  // A compressed hyperspectral ortho can pass 4 GB; IF_NEEDED would only see
-  // that for uncompressed data.
-  creation.SetNameValue("BIGTIFF", "IF_SAFER");
+  const std::string threads = options.threads == 0 ? "ALL_CPUS" : std::to_string(options.threads);
+  const bool predictor = options.predictor && options.compression != "NONE";
+  const std::string block = std::to_string(options.block_size);
 
   AtomicFile file(tif_path, AtomicFile::Mode::byPath);
   struct Leftovers {
     std::filesystem::path partial;
     ~Leftovers() { removeGdalLeftovers(partial); }
   } leftovers{file.partialPath()};
+  const BlockCacheLimit cache_limit;
+  int progress_calls = 0;  // trimFreedMemory's count
+  // No multi-threaded decoding of the overviews' working file (which
+  // GDAL_NUM_THREADS, even from the environment, would turn on): GDAL 3.6
+  // fails on band-interleaved files of many bands there ("Bad value 210 for
+  // ExtraSamples tag"), in worker threads whose errors no one sees. Compression
+  // keeps its threads (NUM_THREADS below).
+  const CPLConfigOptionSetter single_threaded_reads("GDAL_NUM_THREADS", "1", false);
+
+  // The overviews, made before the GeoTIFF as GDAL's COG driver does, into a
+  // working file `<partial>.vrt.ovr`: GDAL builds external overviews only for
+  // a dataset opened from a file, hence the VRT written as `<partial>.vrt`.
+  // Band-interleaved, ZSTD level 1 (fast; read back once; DEFLATE level 1
+  // where this GDAL has no ZSTD). AVERAGE and
+  // the other resamplings skip nodata pixels.
+  GdalDataset source_for_copy;
+  std::vector<int> factors;
+  if (options.overviews) factors = overviewFactors(header.samples, header.lines, options.block_size);
+  if (!factors.empty()) {
+    std::filesystem::path vrt_path = file.partialPath();
+    vrt_path += ".vrt";
+    GdalDataset(GDALCreateCopy(vrt_driver, vrt_path.c_str(), vrt.get(), FALSE, nullptr, nullptr, nullptr));
+    const char* const vrt_only[] = {"VRT", nullptr};
+    source_for_copy.reset(
+        GDALOpenEx(vrt_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, vrt_only, nullptr, nullptr));
+    if (!source_for_copy) {
+      throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
+    }
+    // GDAL takes an overview tile size only as a power of two >= 64.
+    const bool power_of_two_block =
+        (options.block_size & (options.block_size - 1)) == 0 && options.block_size >= 64;
+    const char* codecs = GDALGetMetadataItem(gtiff, GDAL_DMD_CREATIONOPTIONLIST, nullptr);
+    const bool zstd = codecs != nullptr && std::string_view(codecs).find("ZSTD") != std::string_view::npos;
+    const CPLConfigOptionSetter ovr_compress("COMPRESS_OVERVIEW", zstd ? "ZSTD" : "DEFLATE", false);
+    const CPLConfigOptionSetter ovr_level(zstd ? "ZSTD_LEVEL_OVERVIEW" : "ZLEVEL_OVERVIEW", "1", false);
+    const CPLConfigOptionSetter ovr_interleave("INTERLEAVE_OVERVIEW", "BAND", false);
+    const CPLConfigOptionSetter ovr_bigtiff("BIGTIFF_OVERVIEW", "IF_SAFER", false);
+    const CPLConfigOptionSetter ovr_block("GDAL_TIFF_OVR_BLOCKSIZE",
+                                          power_of_two_block ? block.c_str() : nullptr, false);
+    if (GDALBuildOverviews(source_for_copy.get(), options.overview_resampling.c_str(),
+                           static_cast<int>(factors.size()), factors.data(), 0, nullptr, trimFreedMemory,
+                           &progress_calls) != CE_None ||
+        errors.failed()) {
+      throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
+    }
+  }
+
+  // The GeoTIFF: GTiff with COPY_SRC_OVERVIEWS writes the IFDs first, then
+  // the overviews' tiles (smallest first), then the full-resolution tiles,
+  // i.e. a cloud-optimized layout (GDAL's validate_cloud_optimized_geotiff.py
+  // accepts it). Band-interleaved, unlike GDAL 3.6's COG driver (always
+  // pixel-interleaved): a 512 x 512 tile of 211 float bands would be 221 MB to
+  // buffer and compress per tile (GBs of RSS with several threads), and a GIS
+  // showing three bands would decode all 211.
+  CPLStringList creation;
+  creation.SetNameValue("TILED", "YES");
+  creation.SetNameValue("BLOCKXSIZE", block.c_str());
+  creation.SetNameValue("BLOCKYSIZE", block.c_str());
+  creation.SetNameValue("INTERLEAVE", "BAND");
+  creation.SetNameValue("COMPRESS", options.compression.c_str());
+  if (predictor) creation.SetNameValue("PREDICTOR", predictorFor(header.data_type));
+  creation.SetNameValue("COPY_SRC_OVERVIEWS", "YES");
+  creation.SetNameValue("NUM_THREADS", threads.c_str());
+  // A compressed hyperspectral ortho can pass 4 GB; IF_NEEDED would only see
+  // that for uncompressed data.
+  creation.SetNameValue("BIGTIFF", "IF_SAFER");
+  // The overviews copied into the GeoTIFF are compressed like the image.
+  const CPLConfigOptionSetter ovr_compress("COMPRESS_OVERVIEW", options.compression.c_str(), false);
+  const CPLConfigOptionSetter ovr_predictor("PREDICTOR_OVERVIEW",
+                                            predictor ? predictorFor(header.data_type) : "1", false);
   {
-    GdalDataset written(
-        GDALCreateCopy(cog, file.partialPath().c_str(), vrt.get(), FALSE, creation.List(), nullptr, nullptr));
+    GDALDatasetH copied_from = source_for_copy ? source_for_copy.get() : vrt.get();
+    GdalDataset written(GDALCreateCopy(gtiff, file.partialPath().c_str(), copied_from, FALSE, creation.List(),
+                                       trimFreedMemory, &progress_calls));
     if (!written) {
       throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
     }
@@ -342,6 +483,8 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
   if (errors.failed()) {
     throw std::runtime_error("cannot write " + tif_path.string() + ": " + errors.message());
   }
+  source_for_copy.reset();
+  removeGdalLeftovers(file.partialPath());
   file.commit();
 }
 

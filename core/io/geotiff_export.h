@@ -23,8 +23,24 @@
 //                   `wavelength` and `wavelength_units` as GDAL's ENVI driver
 //                   names them, and `fwhm` when the header has one; without
 //                   wavelengths, the header's band names
-//   layout          COG: tiled (block_size), compressed, overviews after the
-//                   full-resolution image, IFDs first (GDAL's COG driver)
+//   layout          cloud-optimized: tiled (block_size), compressed, band-
+//                   interleaved, every IFD first, then the overviews' tiles
+//                   (smallest first), then the full-resolution tiles (what
+//                   GDAL's validate_cloud_optimized_geotiff.py checks)
+//
+// How it is written, and why not with GDAL's COG driver: GDAL 3.6's COG
+// driver is always pixel-interleaved, and a 512 x 512 tile of 211 float bands
+// is 221 MB to buffer and compress (several at once with threads): 3.9 GB of
+// RSS and 160-170 s of CPU for a 2 GB ortho (half that CPU now). Band-interleaved tiles are 1 MB, and a GIS that
+// shows three bands reads three bands. The steps are those of the COG driver:
+// overviews (GDALBuildOverviews on the VRT, saved as `<tif>.partial.vrt`, into
+// `<tif>.partial.vrt.ovr`, ZSTD level 1, removed at the end), then GTiff with
+// COPY_SRC_OVERVIEWS=YES, which lays the file out as above. Peak memory stays
+// at 200-300 MB whatever the image size: GDAL's block cache (process-wide) is
+// capped at 64 MB while an export runs, and memory freed by GDAL is returned
+// to the system as the copy goes (benchmarks: docs/BENCHMARKS.md, "GeoTIFF
+// export"). GDAL 3.6 writes no COG "ghost" header for band-interleaved files,
+// so it reports no LAYOUT=COG; the layout is the same.
 //
 // Why the header is read by hsmap and the pixels by GDAL: GDAL's (3.6) ENVI
 // driver reads hsmap's headers correctly (checked in the tests), but silently
@@ -47,8 +63,14 @@
 //   either name, and an older tif_path is kept.
 // - GDAL's messages are not printed: a GDAL failure is a std::runtime_error
 //   naming the file and carrying GDAL's message (InputError when GDAL cannot
-//   read the ENVI data). Thread-safe: GDAL is registered once, and its error
-//   handler and configuration options are set for the calling thread only.
+//   read the ENVI data). Thread-safe: GDAL is registered once, its error
+//   handler and configuration options are set for the calling thread only,
+//   and the block-cache cap is counted across concurrent exports (the last
+//   one to finish restores the caller's limit).
+// - Working files beside tif_path (`.partial`, `.partial.vrt`,
+//   `.partial.vrt.ovr`) are removed on success and on failure; they need
+//   about a third of the uncompressed image size on disk while overviews are
+//   copied.
 
 #include <filesystem>
 #include <string>
@@ -56,7 +78,7 @@
 namespace hsmap {
 
 struct GeoTiffExportOptions {
-  // Tile width and height in pixels (COG BLOCKSIZE). A multiple of 16 in
+  // Tile width and height in pixels. A multiple of 16 in
   // [16, 4096] (TIFF tiles). 512 is what COG readers expect; smaller tiles
   // only pay for tiny images.
   int block_size = 512;
@@ -67,14 +89,15 @@ struct GeoTiffExportOptions {
   // float data, horizontal differencing (2) for integers. Halves the size of
   // smooth float images for a small cost in speed; off for noise-like data.
   bool predictor = true;
-  // Reduced-resolution overviews (COG OVERVIEWS=AUTO: halving until the
-  // image fits in one tile), so a GIS can show the whole survey quickly.
+  // Reduced-resolution overviews (as GDAL's COG OVERVIEWS=AUTO: halving
+  // until the image fits in one tile), so a GIS can show the whole survey
+  // quickly.
   bool overviews = true;
   // How overview pixels are made from the image: AVERAGE keeps spectra
   // physical (no overshoot, nodata skipped); NEAREST keeps original values.
   // One of NEAREST, AVERAGE, BILINEAR, CUBIC, CUBICSPLINE, LANCZOS, MODE, RMS.
   std::string overview_resampling = "AVERAGE";
-  // Compression threads (COG NUM_THREADS); 0 = every CPU.
+  // Compression and overview threads (GDAL NUM_THREADS); 0 = every CPU.
   int threads = 0;
 
   // std::invalid_argument saying which field is wrong and what is allowed.

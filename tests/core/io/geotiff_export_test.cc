@@ -1,6 +1,8 @@
 #include "core/io/geotiff_export.h"
 
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -145,6 +147,51 @@ std::string metadataItem(GDALMajorObject& object, const char* name, const char* 
   return value != nullptr ? value : "<absent>";
 }
 
+// The offsets of the IFDs of a little-endian TIFF or BigTIFF, in chain order.
+std::vector<std::uint64_t> ifdOffsets(const std::filesystem::path& tif) {
+  const std::string bytes = TempFolder::read(tif);
+  const auto read = [&](std::uint64_t at, int size) {
+    std::uint64_t value = 0;
+    for (int i = size - 1; i >= 0; --i) value = value << 8 | static_cast<unsigned char>(bytes.at(at + i));
+    return value;
+  };
+  if (bytes.size() < 16 || bytes.compare(0, 2, "II") != 0) return {};
+  const bool big = read(2, 2) == 43;
+  std::vector<std::uint64_t> offsets;
+  for (std::uint64_t at = big ? read(8, 8) : read(4, 4); at != 0 && offsets.size() < 64;) {
+    offsets.push_back(at);
+    const std::uint64_t entries = big ? read(at, 8) : read(at, 2);
+    const std::uint64_t next_at = big ? at + 8 + 20 * entries : at + 2 + 12 * entries;
+    at = big ? read(next_at, 8) : read(next_at, 4);
+  }
+  return offsets;
+}
+
+std::uint64_t firstTileOffset(GDALRasterBand& band) {
+  const std::string offset = metadataItem(band, "BLOCK_OFFSET_0_0", "TIFF");
+  return offset == "<absent>" ? 0 : std::stoull(offset);
+}
+
+// A cloud-optimized layout (as GDAL's COG driver and validator define it):
+// one IFD per resolution, every IFD before the first tile, the overviews'
+// tiles (smallest first) before the full-resolution ones; band-interleaved.
+void expectCloudOptimizedLayout(const std::filesystem::path& path, GDALDataset& tif) {
+  EXPECT_EQ(metadataItem(tif, "INTERLEAVE", "IMAGE_STRUCTURE"), "BAND");
+  GDALRasterBand* band = tif.GetRasterBand(1);
+  const int overviews = band->GetOverviewCount();
+  const std::vector<std::uint64_t> ifds = ifdOffsets(path);
+  ASSERT_EQ(ifds.size(), static_cast<std::size_t>(1 + overviews));
+  std::vector<std::uint64_t> tiles = {firstTileOffset(*band)};  // full resolution, then overviews
+  for (int i = 0; i < overviews; ++i) tiles.push_back(firstTileOffset(*band->GetOverview(i)));
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    ASSERT_GT(tiles[i], 0u) << "level " << i;
+    for (std::uint64_t ifd : ifds) EXPECT_LT(ifd, tiles[i]) << "IFD after the tiles of level " << i;
+    if (i > 0) {
+      EXPECT_LT(tiles[i], tiles[i - 1]) << "level " << i << " after level " << i - 1;
+    }
+  }
+}
+
 TEST(GeoTiffExport, CogCarriesPixelsCrsGeoTransformNodataAndWavelengths) {
   TempFolder dir;
   const std::filesystem::path hdr = writeOrtho(dir, orthoHeader(utmMapInfo(31, true)));
@@ -183,7 +230,7 @@ TEST(GeoTiffExport, CogCarriesPixelsCrsGeoTransformNodataAndWavelengths) {
     EXPECT_EQ(block_x, 512);
     EXPECT_EQ(block_y, 512);
   }
-  EXPECT_EQ(metadataItem(*tif, "LAYOUT", "IMAGE_STRUCTURE"), "COG");
+  expectCloudOptimizedLayout(dir / "ortho.tif", *tif);
   EXPECT_EQ(metadataItem(*tif, "COMPRESSION", "IMAGE_STRUCTURE"), "DEFLATE");
   EXPECT_EQ(metadataItem(*tif, "PREDICTOR", "IMAGE_STRUCTURE"), "3");  // floating-point predictor
   // Nothing of the ENVI driver's own metadata ("Band_1=...") is carried over.
@@ -202,7 +249,7 @@ TEST(GeoTiffExport, SmallTilesGiveSeveralTilesAndAveragedOverviews) {
   const Dataset tif = openWithGdal(dir / "ortho.tif", "GTiff");
   ASSERT_NE(tif, nullptr);
   expectPixels(*tif);
-  EXPECT_EQ(metadataItem(*tif, "LAYOUT", "IMAGE_STRUCTURE"), "COG");
+  expectCloudOptimizedLayout(dir / "ortho.tif", *tif);
   EXPECT_EQ(metadataItem(*tif, "COMPRESSION", "IMAGE_STRUCTURE"), "ZSTD");
   GDALRasterBand* band = tif->GetRasterBand(2);
   int block_x = 0, block_y = 0;
@@ -231,6 +278,75 @@ TEST(GeoTiffExport, SmallTilesGiveSeveralTilesAndAveragedOverviews) {
   }
   ASSERT_GT(count, 0);
   EXPECT_NEAR(value, sum / count, 1e-3);
+}
+
+// GDAL 3.6 decodes band-interleaved tiles of many bands wrongly in worker
+// threads ("Bad value 11 for ExtraSamples tag") when GDAL_NUM_THREADS is set,
+// and worker threads report to the global error handler only: the export
+// reads its overviews' working file on its own thread whatever the
+// configuration says.
+std::atomic<int> worker_errors{0};
+void CPL_STDCALL countErrors(CPLErr level, CPLErrorNum, const char*) {
+  if (level == CE_Failure || level == CE_Fatal) ++worker_errors;
+}
+
+TEST(GeoTiffExport, ManyBandsUnderGdalNumThreadsGiveNoHiddenErrorsAndRightOverviews) {
+  constexpr int samples = 400, lines = 300, bands = 12;
+  const auto value = [](int l, int b, int s) {
+    return s < l / 4 ? std::nanf("") : 10.0f * b + 0.125f * s + 0.0625f * l;
+  };
+  TempFolder dir;
+  EnviHeader header = orthoHeader(utmMapInfo(31, true), EnviInterleave::bil);
+  header.samples = samples;
+  header.lines = lines;
+  header.bands = bands;
+  header.wavelength.clear();
+  for (int b = 0; b < bands; ++b) header.wavelength.push_back(400.0 + 10.0 * b);
+  EnviWriter writer(dir / "ortho.hdr", header);
+  std::vector<float> line(static_cast<std::size_t>(samples) * bands);
+  for (int l = 0; l < lines; ++l) {
+    for (int b = 0; b < bands; ++b) {
+      for (int s = 0; s < samples; ++s) line[static_cast<std::size_t>(b) * samples + s] = value(l, b, s);
+    }
+    writer.writeLine(line.data());
+  }
+  writer.finish();
+  GeoTiffExportOptions options;
+  options.block_size = 64;  // overviews 200 x 150, 100 x 75, 50 x 38, several tiles each
+  struct GlobalGdalSettings {
+    CPLErrorHandler previous;
+    GlobalGdalSettings() {
+      worker_errors = 0;
+      CPLSetConfigOption("GDAL_NUM_THREADS", "ALL_CPUS");
+      previous = CPLSetErrorHandler(countErrors);
+    }
+    ~GlobalGdalSettings() {
+      CPLSetErrorHandler(previous);
+      CPLSetConfigOption("GDAL_NUM_THREADS", nullptr);
+    }
+  };
+  {
+    const GlobalGdalSettings settings;
+    exportEnviToCog(dir / "ortho.hdr", dir / "ortho.tif", options);
+  }
+  EXPECT_EQ(worker_errors.load(), 0);
+
+  const Dataset tif = openWithGdal(dir / "ortho.tif", "GTiff");
+  ASSERT_NE(tif, nullptr);
+  expectCloudOptimizedLayout(dir / "ortho.tif", *tif);
+  for (int b : {0, bands - 1}) {
+    GDALRasterBand* band = tif->GetRasterBand(b + 1);
+    ASSERT_EQ(band->GetOverviewCount(), 3);
+    GDALRasterBand* overview = band->GetOverview(0);
+    ASSERT_EQ(overview->GetXSize(), samples / 2);
+    // Overview pixel (60, 40): the mean of lines 80..81, samples 120..121.
+    float mean = 0;
+    ASSERT_EQ(overview->RasterIO(GF_Read, 60, 40, 1, 1, &mean, 1, 1, GDT_Float32, 0, 0), CE_None);
+    EXPECT_NEAR(mean, 10.0f * b + 0.125f * 120.5f + 0.0625f * 80.5f, 1e-3) << "band " << b + 1;
+    // Overview pixel (2, 50): lines 100..101, samples 4..5 all NaN (s < l / 4).
+    ASSERT_EQ(overview->RasterIO(GF_Read, 2, 50, 1, 1, &mean, 1, 1, GDT_Float32, 0, 0), CE_None);
+    EXPECT_TRUE(std::isnan(mean)) << "band " << b + 1 << ": " << mean;
+  }
 }
 
 // South of the equator: EPSG:327zz; a BIL file; a reference pixel other than
