@@ -7,14 +7,22 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <new>
+
+#include <sys/mman.h>
 
 #include <tbb/parallel_for.h>
+
+#include "core/io/float_transpose.h"
 
 namespace hsmap {
 
 namespace {
 constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
 }  // namespace
+
+void OrthoTileAccumulator::FreeDeleter::operator()(float* p) const { std::free(p); }
 
 std::int64_t OrthoTileAccumulator::bytesPerRow(int cols, int bands) {
   return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 4 + 16);
@@ -42,12 +50,25 @@ void OrthoTileAccumulator::reset(int row_begin, int row_end) {
   finished_ = false;
   observed_owned_ = filled_owned_ = 0;
   const std::size_t pixels = std::size_t(last_row_ - first_row_) * std::size_t(cols_);
-  // assign() keeps the capacity when the new size fits in it.
-  sums_.assign(pixels * std::size_t(bands_), 0.0f);
+  // Only the counts and states are cleared (5 bytes a pixel): a pixel's sums,
+  // best distance and ancillary values are set by its first hit (add) or by
+  // the filling, and never read while its count is 0 and it is not filled.
+  // Clearing all of them (~870 bytes a pixel at 211 bands) cost as much as
+  // the accumulation. resize() keeps the capacity when the new size fits.
+  const std::size_t floats = pixels * std::size_t(bands_);
+  if (floats > sums_capacity_) {
+    const std::size_t bytes = (floats * sizeof(float) + kHugePage - 1) / kHugePage * kHugePage;
+    sums_.reset(static_cast<float*>(std::aligned_alloc(kHugePage, bytes)));
+    if (!sums_) throw std::bad_alloc();
+    sums_capacity_ = bytes / sizeof(float);
+#if defined(MADV_HUGEPAGE)
+    ::madvise(sums_.get(), bytes, MADV_HUGEPAGE);  // a hint: without it, 4 KB pages
+#endif
+  }
   counts_.assign(pixels, 0);
   state_.assign(pixels, kEmpty);
-  best_d2_.assign(pixels, std::numeric_limits<float>::infinity());
-  ancillary_.assign(pixels, Eigen::Vector4f::Constant(kNaNf));
+  best_d2_.resize(pixels);
+  ancillary_.resize(pixels);
 }
 
 bool OrthoTileAccumulator::owns(const Eigen::Vector2d& col_row) const {
@@ -62,10 +83,18 @@ bool OrthoTileAccumulator::add(const OrthoHit& hit) {
   const int col = int(col_f), row = int(row_f);
   const std::size_t i = index(row, col);
   float* sum = &sums_[i * std::size_t(bands_)];
-  for (int b = 0; b < bands_; ++b) sum[b] += hit.spectrum[b];
-  ++counts_[i];
   const float d2 = float((hit.col_row.x() - col_f) * (hit.col_row.x() - col_f) +
                          (hit.col_row.y() - row_f) * (hit.col_row.y() - row_f));
+  if (counts_[i] == 0) {
+    // 0 + x, not x: the same bits as adding to a cleared sum (-0 becomes +0).
+    for (int b = 0; b < bands_; ++b) sum[b] = 0.0f + hit.spectrum[b];
+    counts_[i] = 1;
+    best_d2_[i] = d2;
+    ancillary_[i] = Eigen::Vector4f(hit.line, hit.sample, hit.range_m, hit.incidence_deg);
+    return row >= row_begin_ && row < row_end_;
+  }
+  for (int b = 0; b < bands_; ++b) sum[b] += hit.spectrum[b];
+  ++counts_[i];
   if (d2 < best_d2_[i]) {
     best_d2_[i] = d2;
     ancillary_[i] = Eigen::Vector4f(hit.line, hit.sample, hit.range_m, hit.incidence_deg);
@@ -171,14 +200,16 @@ void OrthoTileAccumulator::spectraRow(int row, float* out) const {
     throw std::logic_error("OrthoTileAccumulator::spectraRow: row " + std::to_string(row) +
                            " not owned or not finished");
   }
-  for (int col = 0; col < cols_; ++col) {
-    const std::size_t i = index(row, col);
-    if (state_[i] == kEmpty) {
-      for (int b = 0; b < bands_; ++b) out[std::size_t(b) * cols_ + col] = kNaNf;
-    } else {
-      const float* value = &sums_[i * std::size_t(bands_)];
-      for (int b = 0; b < bands_; ++b) out[std::size_t(b) * cols_ + col] = value[b];
-    }
+  // A blocked transpose of the whole row (empty pixels' sums are stale or
+  // uninitialised), then NaN over the empty pixels band by band: a strided
+  // copy pixel by pixel cost the write thread more than the disk.
+  const std::size_t first = index(row, 0);
+  transposeFloats(&sums_[first * std::size_t(bands_)], std::size_t(cols_), std::size_t(bands_),
+                  std::size_t(bands_), out, std::size_t(cols_));
+  const std::uint8_t* state = &state_[first];
+  for (int b = 0; b < bands_; ++b) {
+    float* band = out + std::size_t(b) * cols_;
+    for (int col = 0; col < cols_; ++col) band[col] = state[col] == kEmpty ? kNaNf : band[col];
   }
 }
 

@@ -33,10 +33,18 @@
 // line that reaches [row_begin - halo, row_end + halo) gets, for the owned
 // rows, exactly what one accumulator over the whole grid would give.
 //
-// Memory: (bands + 6) * 4 bytes per pixel of (rows + 2 halo) x cols.
+// Memory: (bands + 6) * 4 bytes per pixel of (rows + 2 halo) x cols. The
+// sums (nearly all of it) are allocated once, uninitialised, in transparent
+// huge pages where the kernel allows (madvise): on the project's virtual
+// machine a 4 KB page fault costs ~30 us, so first touching 256 MB page by
+// page took 2-5 s, more than accumulating into it. reset() clears only the
+// counts and states; a pixel's sums, nearest distance and ancillary values
+// are written by its first hit (so stale values of an earlier tile are never
+// read: a reused accumulator gives the same bits as a new one).
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "pipelines/hyperspectral/ortho_grid.h"
@@ -100,7 +108,11 @@ class OrthoTileAccumulator {
 
   int rows_, cols_, bands_, halo_, row_begin_ = 0, row_end_ = 0, first_row_ = 0, last_row_ = 0;
   bool finished_ = false;
-  std::vector<float> sums_;             // pixel-major: [pixel * bands + b]
+  struct FreeDeleter {
+    void operator()(float* p) const;
+  };
+  std::unique_ptr<float[], FreeDeleter> sums_;  // pixel-major: [pixel * bands + b]
+  std::size_t sums_capacity_ = 0;               // floats
   std::vector<std::uint32_t> counts_;
   std::vector<std::uint8_t> state_;
   std::vector<float> best_d2_;          // squared distance (px^2) of the nearest hit to the centre

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -113,6 +114,58 @@ TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
       EXPECT_FLOAT_EQ(whole[i], tiled[i]) << i;
     }
   }
+}
+
+TEST(OrthoTileAccumulator, AReusedAccumulatorGivesTheSameBitsAsANewOne) {
+  // reset() clears only counts and states: what an earlier tile left in the
+  // sums and ancillary values must never show through.
+  const OrthoGrid grid = smallGrid(12, 20);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> col(-0.5, 11.5), row(-0.5, 19.5);
+  std::vector<std::vector<float>> spectra;
+  std::vector<Eigen::Vector2d> where;
+  for (int i = 0; i < 120; ++i) {
+    spectra.push_back({float(i) + 0.5f, -float(3 * i)});
+    where.emplace_back(col(rng), row(rng));
+  }
+  auto feed = [&](OrthoTileAccumulator& tile) {
+    for (std::size_t i = 0; i < where.size(); ++i) {
+      tile.add(hitAt(where[i].x(), where[i].y(), spectra[i], float(i), float(i % 7)));
+    }
+    tile.finish(2);
+  };
+  auto rows = [&](const OrthoTileAccumulator& tile, std::vector<float>& spectra_out,
+                  std::vector<float>& ancillary_out) {
+    std::vector<float> line(2 * 12), ancillary(4 * 12);
+    for (int r = tile.rowBegin(); r < tile.rowEnd(); ++r) {
+      tile.spectraRow(r, line.data());
+      tile.ancillaryRow(r, ancillary.data());
+      spectra_out.insert(spectra_out.end(), line.begin(), line.end());
+      ancillary_out.insert(ancillary_out.end(), ancillary.begin(), ancillary.end());
+    }
+  };
+  OrthoTileAccumulator fresh(grid, 2, 6, 14, 2);
+  feed(fresh);
+  // Dirty every pixel of a larger tile with other spectra, then reuse it.
+  OrthoTileAccumulator reused(grid, 2, 0, 20, 2);
+  const std::vector<float> junk{1e9f, -1e9f};
+  for (int r = 0; r < 20; ++r) {
+    for (int c = 0; c < 12; ++c) reused.add(hitAt(c + 0.3, r - 0.2, junk, 99, 99));
+  }
+  reused.finish(2);
+  reused.reset(6, 14);
+  feed(reused);
+  std::vector<float> fresh_spectra, fresh_ancillary, reused_spectra, reused_ancillary;
+  rows(fresh, fresh_spectra, fresh_ancillary);
+  rows(reused, reused_spectra, reused_ancillary);
+  ASSERT_EQ(fresh_spectra.size(), reused_spectra.size());
+  EXPECT_EQ(0, std::memcmp(fresh_spectra.data(), reused_spectra.data(),
+                           fresh_spectra.size() * sizeof(float)));
+  EXPECT_EQ(0, std::memcmp(fresh_ancillary.data(), reused_ancillary.data(),
+                           fresh_ancillary.size() * sizeof(float)));
+  EXPECT_EQ(fresh.observedPixels(), reused.observedPixels());
+  EXPECT_EQ(fresh.filledPixels(), reused.filledPixels());
+  EXPECT_GT(fresh.filledPixels(), 0);
 }
 
 }  // namespace

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The products stage (ray casting of every UHI scan line + the hyperspectral
+# ortho-image) against the time to read the cube once: for each SURVEY
+#   hsmap run SURVEY --out RUN --until surface         (once, if RUN/map/mesh.ply is missing)
+#   cat SURVEY/uhi/cube.raw > /dev/null                 (timed: the read floor, in this run)
+#   hsmap run SURVEY --out RUN --from products --force  (under /usr/bin/time -v)
+# and prints one Markdown table: scan lines, the products stage's time
+# (run.yaml), scan lines per second, the ratio of the stage's time to cat's,
+# the process's peak memory (time -v) and the ortho-image's size on disk.
+# The stage's own report (HyperspectralReport::summary, with the time of
+# each step) is in RUN.products.log.
+#
+#   benchmarks/hyperspectral_benchmark.sh SURVEY... [-- BUILD_DIR]
+#
+# Run folders go to ${WORK_DIR:-/tmp}/hsmap_products_<name> (an existing one
+# with a finished surface is reused). Set REPEATS=n to time the stage n times
+# (each with its own cat); the table then has one row per repeat.
+# The cat is done right before the stage, so both see the same page cache:
+# after it, a cube smaller than the free memory is read from memory.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+# shellcheck source=benchmarks/survey_arguments.sh
+source "$here/survey_arguments.sh"
+repeats="${REPEATS:-1}"
+
+seconds_now() { date +%s.%N; }
+
+echo "| survey | repeat | scan lines | products stage (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for survey in "${surveys[@]}"; do
+  name=$(basename "$survey")
+  run="$work/hsmap_products_$name"
+  if [[ ! -f "$run/map/mesh.ply" ]]; then
+    "$hsmap" run "$survey" --out "$run" --until surface >"$run.surface.log" 2>&1
+  fi
+  for ((repeat = 1; repeat <= repeats; ++repeat)); do
+    start=$(seconds_now)
+    cat "$survey/uhi/cube.raw" >/dev/null
+    cat_s=$(echo "$(seconds_now) - $start" | bc -l)
+    /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products --force \
+      >"$run.products.log" 2>"$run.products.time"
+    # The stage's time from the run record, else the whole process's.
+    stage_s=$(grep -oE "\{name: products, time_s: [0-9.eE+-]+" "$run/run.yaml" | awk '{print $NF}' || true)
+    if [[ -z "$stage_s" ]]; then
+      stage_s=$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0;
+                 for (i = 1; i <= n; ++i) s = s * 60 + t[i]; print s}' "$run.products.time")
+    fi
+    lines=$(grep -oE "scan lines: [0-9]+ cast" "$run.products.log" "$run.products.time" 2>/dev/null |
+            head -1 | grep -oE "[0-9]+" || true)
+    peak_kb=$(grep "Maximum resident set size" "$run.products.time" | awk '{print $NF}')
+    ortho_bytes=$(stat -c %s "$run/hyperspectral/ortho.raw" 2>/dev/null || echo 0)
+    awk -v survey="$name" -v repeat="$repeat" -v lines="${lines:-0}" -v stage="$stage_s" -v cat_s="$cat_s" \
+        -v peak="$peak_kb" -v bytes="$ortho_bytes" 'BEGIN {
+      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f |\n", survey, repeat, lines, stage,
+             (stage > 0 ? lines / stage : 0), cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9 }'
+  done
+done
