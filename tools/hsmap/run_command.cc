@@ -6,22 +6,14 @@
 #include <optional>
 #include <ostream>
 
-#include "core/io/ply_io.h"
 #include "core/io/results_folder.h"
+#include "core/survey/number_text.h"
 #include "core/survey/run_record.h"
-#include "core/util/input_error.h"
 #include "core/survey/survey.h"
-#include "core/util/progress.h"
+#include "core/util/input_error.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/frontend/frontend_outputs.h"
-#include "pipelines/frontend/frontend_runner.h"
-#include "pipelines/georef/georef_outputs.h"
-#include "pipelines/georef/planar_georef.h"
-#include "pipelines/georef/sequential_georef.h"
-#include "pipelines/surface/dense_surface.h"
-#include "pipelines/surface/sparse_map_points.h"
-#include "pipelines/surface/surface_reconstruction.h"
-#include "pipelines/surface/vertex_colours.h"
+#include "tools/hsmap/run_stages.h"
 
 namespace hsmap {
 namespace {
@@ -30,8 +22,8 @@ namespace fs = std::filesystem;
 
 // The stages each variant runs, in order.
 const std::vector<std::string>& variantStages(const std::string& variant) {
-  static const std::vector<std::string> sequential = {"frontend", "georef", "surface"};
-  static const std::vector<std::string> planar = {"georef"};
+  static const std::vector<std::string> sequential = {"frontend", "georef", "surface", "products"};
+  static const std::vector<std::string> planar = {"georef", "surface", "products"};
   return variant == "planar" ? planar : sequential;
 }
 
@@ -57,6 +49,7 @@ int indexOf(const std::vector<std::string>& names, const std::string& name) {
 std::vector<fs::path> stageProducts(const std::string& stage) {
   if (stage == "frontend") return {"frontend"};
   if (stage == "surface") return {results_paths::mesh_ply};
+  if (stage == "products") return {"hyperspectral", "map/rgb_ortho.png", "map/rgb_ortho.tif"};
   return {"trajectory", "calibration.yaml", "map/sparse.ply", "georef"};
 }
 
@@ -72,119 +65,9 @@ std::string megabytesText(double mb) {
   return text;
 }
 
-FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
-  FrontendOptions frontend_options;
-  Progress progress("frontend", survey.rgb.frameCount(), "frames", out);
-  int reported = 0;
-  FrontendResult result = runFrontend(survey, frontend_options, [&](int done, int, double) {
-    progress.advance(done - reported);
-    reported = done;
-  });
-  progress.finish();
-  writeFrontendOutputs(options.out, result);
-  out << result.summary() << "\n";
-  for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
-  out << "wrote " << (options.out / frontend_files::folder).string() << "/\n";
-  return result;
-}
-
 const std::vector<std::string>& supportedSurfaces() {
   static const std::vector<std::string> names = {"dense", "sparse"};
   return names;
-}
-
-// The surface from the adjusted sparse map alone (--surface sparse, the
-// reference paper's way; docs/SURFACE.md): its landmarks, the keyframes that
-// saw them, Delaunay and the visibility cut. Not cleaned: the landmarks'
-// spacing is irregular, so the dense mesh's long-edge and spike tests would
-// cut away real triangles (on rugged the completeness fell from 0.94 to 0.84).
-PlyMesh sparseSurface(const Survey& survey, const GeorefResult& georef, std::ostream& out) {
-  const VisibilityPoints points = visibilityFromSparseMap(georef.map_W);
-  out << "surface: " << points.p_W.size() << " landmarks seen from " << points.c_W.size()
-      << " keyframes...\n";
-  const SurfaceReconstruction surface = reconstructSurface(points);
-  const SurfaceMesh& cleaned = surface.mesh;
-  PlyMesh mesh;
-  mesh.vertices = cleaned.vertices;
-  mesh.triangles = cleaned.triangles;
-  const VertexColours colours = colourVerticesFromKeyframes(
-      cleaned, points, georef.map_W, survey.rgb, PinholeRadtanCamera(survey.config.rgb.camera));
-  mesh.colors = colours.rgb;
-  const SurfaceCutReport& r = surface.report;
-  char line[320];
-  std::snprintf(line, sizeof(line),
-                "surface (sparse landmarks): %lld points, %lld rays, %lld of %lld cells inside, "
-                "%zu triangles; Delaunay %.1f s, rays %.1f s, cut %.1f s\n",
-                static_cast<long long>(r.points), static_cast<long long>(r.rays),
-                static_cast<long long>(r.inside_cells), static_cast<long long>(r.cells),
-                mesh.triangles.size(), r.seconds_triangulation,
-                r.seconds_rays, r.seconds_cut);
-  out << line << "  vertex colours from " << colours.images_decoded << " keyframe images";
-  if (colours.uncoloured > 0) out << "; " << colours.uncoloured << " vertices seen by none (grey)";
-  out << "\n";
-  return mesh;
-}
-
-// The dense surface (docs/SURFACE.md): stereo depth maps of the keyframes,
-// fused, meshed tile by tile and stitched.
-PlyMesh denseSurface(const Survey& survey, const GeorefResult& georef, std::ostream& out) {
-  std::optional<Progress> depth_maps, tiles;
-  const DenseSurface surface = reconstructDenseSurface(
-      georef.map_W, survey.rgb, PinholeRadtanCamera(survey.config.rgb.camera),
-      DenseSurfaceOptions{}, [&](const std::string& what, int done, int total) {
-        std::optional<Progress>& bar = what == "tiles" ? tiles : depth_maps;
-        if (!bar) bar.emplace("surface: " + what, total, what == "tiles" ? "tiles" : "keyframes", out);
-        bar->advance(done - bar->done());
-      });
-  if (depth_maps) depth_maps->finish();
-  if (tiles) tiles->finish();
-  out << surface.report.summary() << "\n";
-  for (const auto& warning : surface.report.warnings) out << "warning: surface: " << warning << "\n";
-  PlyMesh mesh;
-  mesh.vertices = surface.vertices;
-  mesh.triangles = surface.triangles;
-  mesh.colors = surface.colours;
-  return mesh;
-}
-
-void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const RunOptions& options,
-                     std::ostream& out) {
-  const PlyMesh mesh = options.surface == "sparse" ? sparseSurface(survey, georef, out)
-                                                   : denseSurface(survey, georef, out);
-  const fs::path path = options.out / results_paths::mesh_ply;
-  fs::create_directories(path.parent_path());
-  writePly(path, mesh);
-  out << "surface (" << options.surface << "): " << mesh.vertices.size() << " vertices, "
-      << mesh.triangles.size() << " triangles; wrote " << results_paths::mesh_ply << " in "
-      << options.out.string() << "\n";
-}
-
-GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
-                            const RunOptions& options, std::ostream& out) {
-  GeorefOptions georef_options;
-  GeorefResult result;
-  if (options.variant == "planar") {
-    result = runPlanarGeoref(survey, georef_options);
-  } else {
-    std::optional<Progress> frames;
-    result = runSequentialGeoref(survey, *frontend, georef_options,
-                                 [&](const std::string& step, int done, int total) {
-                                   if (step != "frames") {
-                                     if (done == 0) out << "georef: " << step << "...\n";
-                                     return;
-                                   }
-                                   if (!frames) frames.emplace("georef: posing frames", total, "frames", out);
-                                   frames->advance(done - frames->done());
-                                 });
-    if (frames) frames->finish();
-  }
-  writeGeorefOutputs(options.out, result);
-  out << result.summary() << "\n";
-  for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
-  out << "wrote";
-  for (const auto& path : georefProductPaths(result)) out << " " << path.string();
-  out << " in " << options.out.string() << "\n";
-  return result;
 }
 
 }  // namespace
@@ -193,8 +76,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
   CLI::App* command =
       app.add_subcommand("run", "Run the processing stages on a survey into a run folder");
   command->footer(
-      "Variants and their stages: sequential = frontend, georef, surface; planar = georef (the "
-      "INS alone). Joint estimation and the hyperspectral products follow in later versions. Each stage writes its files into RUN under temporary names and moves them "
+      "Variants and their stages: sequential = frontend, georef, surface, products; planar = "
+      "georef (the INS alone), surface (a flat seabed), products. Joint estimation follows in a "
+      "later version. Each stage writes its files into RUN under temporary names and moves them "
       "into place when complete; run.yaml is written last. The files are described in "
       "docs/SURVEY_FORMAT.md.\n"
       "Exit status: 0 on success; 2 when the survey is invalid (one line naming the file and "
@@ -214,6 +98,15 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                       "Surface from: dense (stereo depth maps of the keyframes, fused) or sparse "
                       "(the adjusted landmarks alone)")
       ->default_val(options.surface);
+  command->add_option("--ortho-pixel", options.ortho_pixel_m,
+                      "Ortho-image pixel size in metres (products stage)")
+      ->default_val(options.ortho_pixel_m)
+      ->check(CLI::PositiveNumber);
+  command->add_flag("!--no-geotiff", options.geotiff,
+                    "Skip hyperspectral/ortho.tif (the ENVI ortho-image is always written)");
+  command->add_option("--seabed-depth", options.seabed_depth_m,
+                      "planar: the flat seabed's depth (z in W, metres down; default: estimated "
+                      "from RGB frame pairs scaled by the INS)");
   command->add_flag("--force", options.force,
                     "Replace the outputs that an earlier run left in RUN");
   return command;
@@ -274,7 +167,12 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   record.started_utc = formatUtcTimestamp(std::chrono::system_clock::now());
   record.options["until"] = stages[std::size_t(last)];
   record.options["from"] = stages[std::size_t(first)];
-  if (options.variant != "planar") record.options["surface"] = options.surface;
+  record.options["surface"] = options.variant == "planar" ? "flat" : options.surface;
+  if (options.seabed_depth_m) record.options["seabed_depth_m"] = formatDouble(*options.seabed_depth_m);
+  if (indexOf(stages, "products") >= first && indexOf(stages, "products") <= last) {
+    record.options["ortho_pixel_m"] = formatDouble(options.ortho_pixel_m);
+    record.options["geotiff"] = options.geotiff ? "true" : "false";
+  }
 
   auto finishStage = [&](const std::string& name, double seconds) {
     record.stages.push_back({name, seconds, peakResidentMemoryMb()});
@@ -314,6 +212,8 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
           return 1;
         }
         runSurfaceStage(survey, *georef, options, out);
+      } else if (stage == "products") {
+        runProductsStage(survey, options, out);
       }
     } catch (const InputError&) {
       throw;

@@ -8,7 +8,12 @@
 //                surface (docs/SURFACE.md; --surface dense, the default, meshes
 //                the keyframes' fused stereo depth maps; --surface sparse the
 //                adjusted landmarks alone, the reference paper's way)
-//   planar       georef (the INS alone: no vision)
+//   planar       georef (the INS alone: no vision), surface (a flat seabed at
+//                --seabed-depth or at a depth estimated from RGB frame pairs
+//                scaled by the INS: pipelines/surface/flat_seabed.h)
+//   both         products (docs/PRODUCTS.md): every scan line cast onto the
+//                surface, the hyperspectral ortho-image, its quick-look,
+//                GeoTIFF and ancillary layers, the RGB ortho-image of the mesh
 //
 // --until names the last stage to run; --from the first (the earlier
 // stages' files are read back from RUN, e.g. to rerun geo-referencing on a
@@ -19,6 +24,7 @@
 // an older product looking like its own.
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 
 namespace CLI {
@@ -35,6 +41,10 @@ struct RunOptions {
   std::string from;   // empty: the variant's first stage
   bool force = false;
   std::string surface = "dense";  // dense or sparse
+  double ortho_pixel_m = 0.005;    // products: ortho-image pixel size
+  bool geotiff = true;             // products: also write hyperspectral/ortho.tif
+  // planar: the flat seabed's z in W (m, down); estimated when absent.
+  std::optional<double> seabed_depth_m;
 };
 
 CLI::App* addRunCommand(CLI::App& app, RunOptions& options);

@@ -1,0 +1,224 @@
+#include "tools/hsmap/run_stages.h"
+
+#include <cstdio>
+#include <optional>
+#include <ostream>
+
+#include "core/io/ply_io.h"
+#include "core/io/results_folder.h"
+#include "core/survey/pose_tables.h"
+#include "core/geometry/utm_projection.h"
+#include "core/raycast/mesh_ray_caster.h"
+#include "core/util/input_error.h"
+#include "core/util/progress.h"
+#include "pipelines/frontend/frontend_outputs.h"
+#include "pipelines/frontend/frontend_runner.h"
+#include "pipelines/georef/georef_outputs.h"
+#include "pipelines/georef/planar_georef.h"
+#include "pipelines/georef/sequential_georef.h"
+#include "pipelines/hyperspectral/hyperspectral_ortho.h"
+#include "pipelines/hyperspectral/rgb_ortho.h"
+#include "pipelines/surface/dense_surface.h"
+#include "pipelines/surface/flat_seabed.h"
+#include "pipelines/surface/sparse_map_points.h"
+#include "pipelines/surface/surface_reconstruction.h"
+#include "pipelines/surface/vertex_colours.h"
+
+namespace hsmap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The surface from the adjusted sparse map alone (--surface sparse, the
+// reference paper's way; docs/SURFACE.md): its landmarks, the keyframes that
+// saw them, Delaunay and the visibility cut. Not cleaned: the landmarks'
+// spacing is irregular, so the dense mesh's long-edge and spike tests would
+// cut away real triangles (on rugged the completeness fell from 0.94 to 0.84).
+PlyMesh sparseSurface(const Survey& survey, const GeorefResult& georef, std::ostream& out) {
+  const VisibilityPoints points = visibilityFromSparseMap(georef.map_W);
+  out << "surface: " << points.p_W.size() << " landmarks seen from " << points.c_W.size()
+      << " keyframes...\n";
+  const SurfaceReconstruction surface = reconstructSurface(points);
+  const SurfaceMesh& cleaned = surface.mesh;
+  PlyMesh mesh;
+  mesh.vertices = cleaned.vertices;
+  mesh.triangles = cleaned.triangles;
+  const VertexColours colours = colourVerticesFromKeyframes(
+      cleaned, points, georef.map_W, survey.rgb, PinholeRadtanCamera(survey.config.rgb.camera));
+  mesh.colors = colours.rgb;
+  const SurfaceCutReport& r = surface.report;
+  char line[320];
+  std::snprintf(line, sizeof(line),
+                "surface (sparse landmarks): %lld points, %lld rays, %lld of %lld cells inside, "
+                "%zu triangles; Delaunay %.1f s, rays %.1f s, cut %.1f s\n",
+                static_cast<long long>(r.points), static_cast<long long>(r.rays),
+                static_cast<long long>(r.inside_cells), static_cast<long long>(r.cells),
+                mesh.triangles.size(), r.seconds_triangulation,
+                r.seconds_rays, r.seconds_cut);
+  out << line << "  vertex colours from " << colours.images_decoded << " keyframe images";
+  if (colours.uncoloured > 0) out << "; " << colours.uncoloured << " vertices seen by none (grey)";
+  out << "\n";
+  return mesh;
+}
+
+// The dense surface (docs/SURFACE.md): stereo depth maps of the keyframes,
+// fused, meshed tile by tile and stitched.
+PlyMesh denseSurface(const Survey& survey, const GeorefResult& georef, std::ostream& out) {
+  std::optional<Progress> depth_maps, tiles;
+  const DenseSurface surface = reconstructDenseSurface(
+      georef.map_W, survey.rgb, PinholeRadtanCamera(survey.config.rgb.camera),
+      DenseSurfaceOptions{}, [&](const std::string& what, int done, int total) {
+        std::optional<Progress>& bar = what == "tiles" ? tiles : depth_maps;
+        if (!bar) bar.emplace("surface: " + what, total, what == "tiles" ? "tiles" : "keyframes", out);
+        bar->advance(done - bar->done());
+      });
+  if (depth_maps) depth_maps->finish();
+  if (tiles) tiles->finish();
+  out << surface.report.summary() << "\n";
+  for (const auto& warning : surface.report.warnings) out << "warning: surface: " << warning << "\n";
+  PlyMesh mesh;
+  mesh.vertices = surface.vertices;
+  mesh.triangles = surface.triangles;
+  mesh.colors = surface.colours;
+  return mesh;
+}
+
+// The planar variant's surface: a horizontal plane at the seabed depth,
+// given (--seabed-depth) or estimated from RGB frame pairs scaled by the
+// INS track (flat_seabed.h), under every frame and scan line with a margin
+// that covers what a camera at that altitude sees.
+PlyMesh flatSurface(const Survey& survey, const GeorefResult& georef, const RunOptions& options,
+                    std::ostream& out) {
+  double depth = 0.0, altitude = 2.0;
+  if (options.seabed_depth_m) {
+    depth = *options.seabed_depth_m;
+    out << "surface (flat): seabed at z = " << depth << " m, as given by --seabed-depth\n";
+  } else {
+    out << "surface (flat): estimating the seabed depth from RGB frame pairs and the INS track...\n";
+    const SeabedDepthEstimate estimate = estimateSeabedDepth(survey, georef.frames);
+    depth = estimate.depth_m;
+    altitude = estimate.altitude_m;
+    out << "surface (flat): " << estimate.summary() << "\n";
+  }
+  std::vector<Eigen::Vector3d> positions_W;
+  for (const GeorefFramePose& frame : georef.frames) positions_W.push_back(frame.T_W_C.t);
+  for (const GeorefLinePose& line : georef.lines) positions_W.push_back(line.T_W_U.t);
+  if (!options.seabed_depth_m) {
+    double sum = 0.0;
+    for (const auto& p : positions_W) sum += depth - p.z();
+    altitude = std::max(altitude, sum / double(positions_W.size()));
+  }
+  return flatSeabedMesh(depth, positions_W, 2.0 * std::abs(altitude) + 2.0);
+}
+
+}  // namespace
+
+FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
+  FrontendOptions frontend_options;
+  Progress progress("frontend", survey.rgb.frameCount(), "frames", out);
+  int reported = 0;
+  FrontendResult result = runFrontend(survey, frontend_options, [&](int done, int, double) {
+    progress.advance(done - reported);
+    reported = done;
+  });
+  progress.finish();
+  writeFrontendOutputs(options.out, result);
+  out << result.summary() << "\n";
+  for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
+  out << "wrote " << (options.out / frontend_files::folder).string() << "/\n";
+  return result;
+}
+
+void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const RunOptions& options,
+                     std::ostream& out) {
+  const PlyMesh mesh = options.variant == "planar"   ? flatSurface(survey, georef, options, out)
+                       : options.surface == "sparse" ? sparseSurface(survey, georef, out)
+                                                     : denseSurface(survey, georef, out);
+  const fs::path path = options.out / results_paths::mesh_ply;
+  fs::create_directories(path.parent_path());
+  writePly(path, mesh);
+  out << "surface (" << (options.variant == "planar" ? "flat" : options.surface) << "): " << mesh.vertices.size() << " vertices, "
+      << mesh.triangles.size() << " triangles; wrote " << results_paths::mesh_ply << " in "
+      << options.out.string() << "\n";
+}
+
+GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
+                            const RunOptions& options, std::ostream& out) {
+  GeorefOptions georef_options;
+  GeorefResult result;
+  if (options.variant == "planar") {
+    result = runPlanarGeoref(survey, georef_options);
+  } else {
+    std::optional<Progress> frames;
+    result = runSequentialGeoref(survey, *frontend, georef_options,
+                                 [&](const std::string& step, int done, int total) {
+                                   if (step != "frames") {
+                                     if (done == 0) out << "georef: " << step << "...\n";
+                                     return;
+                                   }
+                                   if (!frames) frames.emplace("georef: posing frames", total, "frames", out);
+                                   frames->advance(done - frames->done());
+                                 });
+    if (frames) frames->finish();
+  }
+  writeGeorefOutputs(options.out, result);
+  out << result.summary() << "\n";
+  for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
+  out << "wrote";
+  for (const auto& path : georefProductPaths(result)) out << " " << path.string();
+  out << " in " << options.out.string() << "\n";
+  return result;
+}
+
+
+void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
+  const fs::path lines_csv = options.out / results_paths::trajectory_uhi_lines;
+  const fs::path mesh_ply = options.out / results_paths::mesh_ply;
+  out << "products: scan line poses from " << lines_csv.string() << ", surface from "
+      << mesh_ply.string() << "\n";
+  if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
+  const std::vector<LinePose> line_poses = readLinePoseTable(lines_csv);
+  const PlyMesh ply = readPly(mesh_ply);
+  if (ply.triangles.empty()) {
+    throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
+                                       std::to_string(ply.vertices.size()) + " vertices");
+  }
+  HyperspectralOptions products;
+  products.pixel_m = options.ortho_pixel_m;
+  products.write_geotiff = options.geotiff;
+  const UtmProjection projection(survey.origin);
+  HyperspectralReport report;
+  {
+    const MeshRayCaster mesh(ply.vertices, ply.triangles);
+    report = writeHyperspectralOrtho(*survey.cube, survey.wavelengths_nm,
+                                     PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
+                                     projection, options.out / "hyperspectral", products, out);
+  }
+  out << report.summary();
+  out << "wrote " << report.ortho_hdr.string();
+  for (const fs::path& path : {report.ortho_tif, report.quicklook_png, report.ancillary_hdr}) {
+    if (!path.empty()) out << ", " << path.string();
+  }
+  out << "\n";
+
+  // The RGB ortho-image of the textured mesh on the same grid, to compare
+  // side by side (and, with its 3D points, to match against).
+  if (ply.colors.size() != ply.vertices.size()) {
+    out << "warning: products: " << mesh_ply.string()
+        << " has no vertex colours: no RGB ortho-image\n";
+    return;
+  }
+  RgbOrthoOptions rgb;
+  rgb.write_geotiff = options.geotiff;
+  const RgbOrthoReport rgb_report =
+      writeRgbOrtho(ply, report.grid, projection, options.out / "map", rgb);
+  out << rgb_report.summary() << "\n";
+  out << "wrote";
+  for (const fs::path& path : {rgb_report.png, rgb_report.tif}) {
+    if (!path.empty()) out << " " << path.string();
+  }
+  out << "\n";
+}
+
+}  // namespace hsmap

@@ -1,0 +1,35 @@
+#pragma once
+// The stages of `hsmap run` (run_command.h), one function each: run the
+// stage's pipeline on the survey, write its products into the run folder
+// (options.out) and tell the user what happened on `out` (progress, the
+// stage's report, what was written). Errors propagate as exceptions; the
+// runner turns them into its exit status.
+//
+//   frontend   RGB frames -> RUN/frontend/ (docs/FRONTEND.md)
+//   georef     front-end + INS (sequential) or the INS alone (planar) ->
+//              RUN/trajectory/, calibration.yaml, map/sparse.ply (docs/GEOREF.md)
+//   surface    the adjusted map -> RUN/map/mesh.ply (docs/SURFACE.md)
+//   products   RUN/trajectory/uhi_lines.csv + RUN/map/mesh.ply + the cube ->
+//              RUN/hyperspectral/ (docs/PRODUCTS.md). It reads its inputs from
+//              the run folder, so `--from products` reruns it alone.
+#include <iosfwd>
+#include <optional>
+
+#include "core/survey/survey.h"
+#include "pipelines/frontend/frontend_runner.h"
+#include "pipelines/georef/georef_result.h"
+#include "tools/hsmap/run_command.h"
+
+namespace hsmap {
+
+FrontendResult runFrontendStage(const Survey& survey, const RunOptions& options, std::ostream& out);
+
+GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
+                            const RunOptions& options, std::ostream& out);
+
+void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const RunOptions& options,
+                     std::ostream& out);
+
+void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out);
+
+}  // namespace hsmap
