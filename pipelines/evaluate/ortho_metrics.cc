@@ -1,5 +1,6 @@
 #include "pipelines/evaluate/ortho_metrics.h"
 
+#include "core/io/envi_ignore_value.h"
 #include "pipelines/evaluate/band_limited_phase_correlation.h"
 
 #include <tbb/blocked_range.h>
@@ -7,7 +8,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -101,35 +101,6 @@ RasterGrid producedGrid(const EnviReader& reader, const UtmProjection& utm) {
                          ", the survey origin's");
   }
   return gridOf(map, reader.lines(), reader.samples());
-}
-
-// `data ignore value` of a header (an unknown key to EnviHeader, kept in
-// other_fields as written).
-std::optional<float> dataIgnoreValue(const EnviReader& reader) {
-  for (const auto& [key_text, value] : reader.header().other_fields) {
-    std::string key;
-    for (const char ch : key_text) {
-      if (std::isspace(static_cast<unsigned char>(ch))) {
-        if (!key.empty() && key.back() != ' ') key += ' ';
-      } else {
-        key += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-      }
-    }
-    if (!key.empty() && key.back() == ' ') key.pop_back();
-    if (key != "data ignore value") continue;
-    std::string text = value;
-    std::erase_if(text, [](char ch) {
-      return ch == '{' || ch == '}' || std::isspace(static_cast<unsigned char>(ch));
-    });
-    double number = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
-    if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(number)) {
-      throw InputError(reader.headerPath(), InputError::atKey("data ignore value"),
-                       "expected a finite number, found '" + value + "'");
-    }
-    return static_cast<float>(number);
-  }
-  return std::nullopt;
 }
 
 bool validValue(float v, const std::optional<float>& ignore) {
@@ -521,7 +492,8 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
   const EnviReader produced_reader(produced_hdr);
   const RasterGrid truth = truthGrid(truth_reader);
   const RasterGrid produced = producedGrid(produced_reader, utm);
-  const std::optional<float> ignore = dataIgnoreValue(produced_reader);
+  const std::optional<float> ignore =
+      enviDataIgnoreValue(produced_reader.header(), produced_reader.headerPath());
 
   OrthoMetrics metrics;
   const cv::Mat truth_mean = bandMeanImage(truth_reader, std::nullopt);

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
 #include "core/io/float_transpose.h"
 #include "core/io/ply_io.h"
@@ -22,6 +23,7 @@
 #include "core/util/stage_timer.h"
 #include "pipelines/hyperspectral/ortho_accumulator.h"
 #include "pipelines/hyperspectral/ortho_quicklook.h"
+#include "pipelines/hyperspectral/product_headers.h"
 #include "pipelines/hyperspectral/w_to_utm_lattice.h"
 
 namespace hsmap {
@@ -35,39 +37,6 @@ double secondsSince(Clock::time_point start) {
 
 void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
-}
-
-// `Data  Ignore Value` -> `data ignore value`.
-std::string normaliseKey(const std::string& key) {
-  std::string out;
-  for (const char c : key) {
-    if (std::isspace(static_cast<unsigned char>(c)) != 0) {
-      if (!out.empty() && out.back() != ' ') out += ' ';
-    } else {
-      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    }
-  }
-  while (!out.empty() && out.back() == ' ') out.pop_back();
-  return out;
-}
-
-// The cube's `data ignore value` (NaN accepted: then it adds nothing to the
-// non-finite check).
-std::optional<float> dataIgnoreValue(const EnviReader& cube) {
-  for (const auto& [key, value] : cube.header().other_fields) {
-    if (normaliseKey(key) != "data ignore value") continue;
-    std::string text = value;
-    std::erase_if(text, [](char c) { return c == '{' || c == '}' || std::isspace(static_cast<unsigned char>(c)); });
-    char* end = nullptr;
-    const double number = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size()) {
-      throw InputError(cube.headerPath(), InputError::atKey("data ignore value"),
-                       "expected a number, found '" + value + "'");
-    }
-    if (std::isnan(number)) return std::nullopt;
-    return float(number);
-  }
-  return std::nullopt;
 }
 
 double median(std::vector<double> values) {
@@ -86,24 +55,7 @@ struct LineFootprint {
 
 EnviHeader orthoHeader(const EnviReader& cube, const std::vector<double>& wavelengths_nm,
                        const OrthoGrid& grid, EnviInterleave interleave) {
-  const EnviHeader& in = cube.header();
-  EnviHeader header;
-  header.samples = grid.cols;
-  header.lines = grid.rows;
-  header.bands = in.bands;
-  header.data_type = EnviDataType::float32;
-  header.interleave = interleave;
-  header.wavelength = wavelengths_nm;
-  header.wavelength_units = "Nanometers";
-  // fwhm in the cube's wavelength units, converted like the wavelengths.
-  if (!in.fwhm.empty() && in.wavelength.size() == in.fwhm.size()) {
-    header.fwhm.resize(in.fwhm.size());
-    for (std::size_t b = 0; b < in.fwhm.size(); ++b) {
-      const double scale = in.wavelength[b] != 0.0 ? wavelengths_nm[b] / in.wavelength[b] : 1.0;
-      header.fwhm[b] = in.fwhm[b] * scale;
-    }
-  }
-  header.band_names = in.band_names;
+  EnviHeader header = spectralProductHeader(cube, wavelengths_nm, grid.rows, grid.cols, interleave);
   header.map_info = grid.mapInfo();
   header.description =
       "hsmap products: hyperspectral ortho-image (mean of the UHI spectra whose ray hit each "
@@ -112,13 +64,7 @@ EnviHeader orthoHeader(const EnviReader& cube, const std::vector<double>& wavele
 }
 
 EnviHeader ancillaryHeader(const OrthoGrid& grid) {
-  EnviHeader header;
-  header.samples = grid.cols;
-  header.lines = grid.rows;
-  header.bands = 4;
-  header.data_type = EnviDataType::float32;
-  header.interleave = EnviInterleave::bil;
-  header.band_names = {"scan line", "sample", "range (m)", "incidence (deg)"};
+  EnviHeader header = ancillaryProductHeader(grid.rows, grid.cols);
   header.map_info = grid.mapInfo();
   header.description =
       "hsmap products: per ortho pixel, scan line, sample, range and incidence angle of the hit "
@@ -192,7 +138,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
                                   std::to_string(cube.lines()) + " lines");
     }
   }
-  const std::optional<float> ignore = dataIgnoreValue(cube);
+  const std::optional<float> ignore = enviDataIgnoreValue(cube.header(), cube.headerPath());
   StageTimings timings;
   HyperspectralReport report;
   report.bands = bands;
