@@ -11,7 +11,34 @@
 
 namespace hsmap {
 
+namespace {
+
+// A stacked run: scan lines side by side, nothing posed or placed.
+EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
+  EvaluationMetrics metrics;
+  metrics.variant = inputs.run.variant;
+  const MetricValue none = MetricValue::missing(kStackedHasNoPoses);
+  for (MetricValue* m :
+       {&metrics.rgb_ate_m, &metrics.rgb_ate_aligned_m, &metrics.rgb_scale_error, &metrics.uhi_position_rmse_m,
+        &metrics.uhi_rotation_rmse_deg, &metrics.extrinsic_rotation_error_deg,
+        &metrics.extrinsic_translation_error_m, &metrics.time_offset_error_s, &metrics.mesh_accuracy_m,
+        &metrics.mesh_completeness, &metrics.mesh_accuracy_attitude_aligned_m,
+        &metrics.mesh_completeness_attitude_aligned, &metrics.alignment_cross_track_spread_m,
+        &metrics.ortho_mean_shift_m, &metrics.ortho_registration_rmse_m, &metrics.ortho_scale_error,
+        &metrics.ortho_sam_deg, &metrics.ortho_coverage, &metrics.ins_floor_rgb_ate_m,
+        &metrics.ins_floor_scale_error}) {
+    *m = none;
+  }
+  for (const StageRecord& stage : inputs.run.stages) metrics.timings_s.emplace_back(stage.name, stage.time_s);
+  metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
+  metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
+  return metrics;
+}
+
+}  // namespace
+
 EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
+  if (inputs.run.variant == "stacked") return stackedMetrics(inputs);
   EvaluationMetrics metrics;
   metrics.variant = inputs.run.variant;
 

@@ -24,6 +24,10 @@
 
 namespace hsmap {
 
+// Why every metric of a `stacked` run is null.
+inline constexpr const char* kStackedHasNoPoses =
+    "the stacked variant poses nothing: scan lines side by side, no map position";
+
 EvaluationMetrics evaluateRun(const EvaluationInputs& inputs);
 
 struct EvaluationReport {

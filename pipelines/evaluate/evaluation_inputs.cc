@@ -84,11 +84,16 @@ EvaluationInputs loadEvaluationInputs(const std::filesystem::path& run_folder,
   const std::filesystem::path lines_csv = run_folder / results_paths::trajectory_uhi_lines;
   const std::filesystem::path calibration_yaml = run_folder / results_paths::calibration_yaml;
   requireResultsFile(run_yaml, "the run record run.yaml");
+  inputs.run = readRunRecord(run_yaml);
+  // The stacked variant poses nothing: it has no trajectory or calibration.
+  if (inputs.run.variant == "stacked") {
+    compareSurveyPaths(&inputs);
+    return inputs;
+  }
   requireResultsFile(frames_csv, "the pose of every RGB frame (t,x,y,z,qw,qx,qy,qz)");
   requireResultsFile(lines_csv, "the pose of every scan line (line,t,x,y,z,qw,qx,qy,qz)");
   requireResultsFile(calibration_yaml, "the estimated calibration calibration.yaml");
 
-  inputs.run = readRunRecord(run_yaml);
   inputs.frames = readTimedPoseTable(frames_csv);
   requireOneRowPerFrame(survey.rgb.times(), frames_source, inputs.frames, frames_csv);
   inputs.lines = readLinePoseTable(lines_csv);

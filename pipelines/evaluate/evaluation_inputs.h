@@ -27,6 +27,7 @@ struct EvaluationInputs {
   Survey survey;
   SurveyTruth truth;
   RunRecord run;
+  // Empty for a `stacked` run (no poses, no calibration: run.variant says so).
   std::vector<TimedPose> frames;  // T_W_C, row i = survey frame i
   std::vector<LinePose> lines;    // T_W_U, row k = scan line k
   RunCalibration calibration;

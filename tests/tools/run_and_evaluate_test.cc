@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/io/envi_reader.h"
 #include "core/io/ply_io.h"
 #include "core/survey/csv_table.h"
 #include "core/survey/pose_tables.h"
@@ -224,6 +225,30 @@ TEST_F(RunAndEvaluate, ATrackingLossIsBridgedByTheInsAndSaysSo) {
                                                  quoted((survey / "truth").string()));
   ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err;
   EXPECT_LT(metric(readText(out / "metrics.json"), "rgb_ate_m"), 0.2);
+}
+
+TEST_F(RunAndEvaluate, StackedWritesTheLinesSideBySideAndScoresNothing) {
+  const fs::path stacked = temp_ / "stacked";
+  const RunResult result = run("stacked", stacked);
+  ASSERT_EQ(result.exit_status, 0) << result.err << result.out;
+  const Survey survey = loadSurvey(tinySurvey());
+  const EnviReader ortho(stacked / "hyperspectral/ortho.hdr");
+  EXPECT_EQ(ortho.lines(), survey.cube->lines());
+  EXPECT_EQ(ortho.samples(), survey.cube->samples());
+  EXPECT_FALSE(ortho.header().map_info.has_value());
+  EXPECT_TRUE(fs::is_regular_file(stacked / "hyperspectral/ortho_rgb.png"));
+  EXPECT_FALSE(fs::exists(stacked / "trajectory"));
+  EXPECT_EQ(readRunRecord(stacked / "run.yaml").stages.back().name, "products");
+
+  const RunResult evaluate = runHsmap(
+      temp_, "evaluate " + quoted(stacked.string()) + " --truth " + quoted((tinySurvey() / "truth").string()));
+  ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err << evaluate.out;
+  const std::string json = readText(stacked / "metrics.json");
+  for (const char* key : {"rgb_ate_m", "uhi_position_rmse_m", "mesh_accuracy_m", "ortho_registration_rmse_m",
+                          "ortho_coverage"}) {
+    EXPECT_EQ(metric(json, key), -1.0) << key << "\n" << json;
+  }
+  EXPECT_NE(evaluate.out.find("the stacked variant poses nothing"), std::string::npos) << evaluate.out;
 }
 
 TEST_F(RunAndEvaluate, AFailedStageLeavesNoProductAndNoRunYaml) {

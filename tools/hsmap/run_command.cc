@@ -24,11 +24,12 @@ namespace fs = std::filesystem;
 const std::vector<std::string>& variantStages(const std::string& variant) {
   static const std::vector<std::string> sequential = {"frontend", "georef", "surface", "products"};
   static const std::vector<std::string> planar = {"georef", "surface", "products"};
-  return variant == "planar" ? planar : sequential;
+  static const std::vector<std::string> stacked = {"products"};
+  return variant == "planar" ? planar : variant == "stacked" ? stacked : sequential;
 }
 
 const std::vector<std::string>& supportedVariants() {
-  static const std::vector<std::string> names = {"sequential", "planar"};
+  static const std::vector<std::string> names = {"sequential", "planar", "stacked"};
   return names;
 }
 
@@ -77,8 +78,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       app.add_subcommand("run", "Run the processing stages on a survey into a run folder");
   command->footer(
       "Variants and their stages: sequential = frontend, georef, surface, products; planar = "
-      "georef (the INS alone), surface (a flat seabed), products. Joint estimation follows in a "
-      "later version. Each stage writes its files into RUN under temporary names and moves them "
+      "georef (the INS alone), surface (a flat seabed), products; stacked = products (the scan "
+      "lines side by side, no map position). Joint estimation follows in a later version. Each stage writes its files into RUN under temporary names and moves them "
       "into place when complete; run.yaml is written last. The files are described in "
       "docs/SURVEY_FORMAT.md.\n"
       "Exit status: 0 on success; 2 when the survey is invalid (one line naming the file and "
@@ -167,7 +168,9 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   record.started_utc = formatUtcTimestamp(std::chrono::system_clock::now());
   record.options["until"] = stages[std::size_t(last)];
   record.options["from"] = stages[std::size_t(first)];
-  record.options["surface"] = options.variant == "planar" ? "flat" : options.surface;
+  if (options.variant != "stacked") {
+    record.options["surface"] = options.variant == "planar" ? "flat" : options.surface;
+  }
   if (options.seabed_depth_m) record.options["seabed_depth_m"] = formatDouble(*options.seabed_depth_m);
   if (indexOf(stages, "products") >= first && indexOf(stages, "products") <= last) {
     record.options["ortho_pixel_m"] = formatDouble(options.ortho_pixel_m);

@@ -14,6 +14,8 @@
 //   both         products (docs/PRODUCTS.md): every scan line cast onto the
 //                surface, the hyperspectral ortho-image, its quick-look,
 //                GeoTIFF and ancillary layers, the RGB ortho-image of the mesh
+//   stacked      products only: the scan lines side by side (no poses, no
+//                map position), the picture without hsmap
 //
 // --until names the last stage to run; --from the first (the earlier
 // stages' files are read back from RUN, e.g. to rerun geo-referencing on a

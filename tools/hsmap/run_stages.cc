@@ -18,6 +18,7 @@
 #include "pipelines/georef/sequential_georef.h"
 #include "pipelines/hyperspectral/hyperspectral_ortho.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
+#include "pipelines/hyperspectral/stacked_products.h"
 #include "pipelines/surface/dense_surface.h"
 #include "pipelines/surface/flat_seabed.h"
 #include "pipelines/surface/sparse_map_points.h"
@@ -173,11 +174,19 @@ GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendRe
 
 
 void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
+  if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
+  if (options.variant == "stacked") {
+    const StackedReport report =
+        writeStackedProducts(*survey.cube, survey.wavelengths_nm, options.out / "hyperspectral", out);
+    out << report.summary() << "\n";
+    out << "wrote " << report.ortho_hdr.string() << ", " << report.quicklook_png.string() << ", "
+        << report.ancillary_hdr.string() << " (no GeoTIFF and no RGB ortho-image: no map position)\n";
+    return;
+  }
   const fs::path lines_csv = options.out / results_paths::trajectory_uhi_lines;
   const fs::path mesh_ply = options.out / results_paths::mesh_ply;
   out << "products: scan line poses from " << lines_csv.string() << ", surface from "
       << mesh_ply.string() << "\n";
-  if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
   const std::vector<LinePose> line_poses = readLinePoseTable(lines_csv);
   const PlyMesh ply = readPly(mesh_ply);
   if (ply.triangles.empty()) {
