@@ -15,6 +15,8 @@
 # Run folders go to ${WORK_DIR:-/tmp}/hsmap_products_<name> (an existing one
 # with a finished surface is reused). Set REPEATS=n to time the stage n times
 # (each with its own cat); the table then has one row per repeat.
+# PRODUCTS_ARGS adds options to the timed run, e.g. "--no-geotiff" to time
+# the casting and ENVI ortho-image apart from the GeoTIFF export.
 # The cat is done right before the stage, so both see the same page cache:
 # after it, a cube smaller than the free memory is read from memory.
 set -euo pipefail
@@ -22,6 +24,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # shellcheck source=benchmarks/survey_arguments.sh
 source "$here/survey_arguments.sh"
 repeats="${REPEATS:-1}"
+read -r -a products_args <<<"${PRODUCTS_ARGS:-}"
 
 seconds_now() { date +%s.%N; }
 
@@ -36,8 +39,8 @@ for survey in "${surveys[@]}"; do
   for ((repeat = 1; repeat <= repeats; ++repeat)); do
     start=$(seconds_now)
     cat "$survey/uhi/cube.raw" >/dev/null
-    cat_s=$(echo "$(seconds_now) - $start" | bc -l)
-    /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products --force \
+    cat_s=$(awk -v a="$start" -v b="$(seconds_now)" 'BEGIN { print b - a }')
+    /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products --force "${products_args[@]}" \
       >"$run.products.log" 2>"$run.products.time"
     # The stage's time from the run record, else the whole process's.
     stage_s=$(grep -oE "\{name: products, time_s: [0-9.eE+-]+" "$run/run.yaml" | awk '{print $NF}' || true)
