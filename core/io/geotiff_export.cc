@@ -28,6 +28,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/io/envi_header.h"
+#include "core/io/envi_ignore_value.h"
 #include "core/io/envi_reader.h"
 #include "core/util/input_error.h"
 
@@ -40,20 +41,6 @@ constexpr const char* kExpectedMapInfo =
 std::string lowercase(std::string_view text) {
   std::string out(text);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-// `Data  Ignore Value` -> `data ignore value` (ENVI keys are case-insensitive).
-std::string normaliseKey(std::string_view key) {
-  std::string out;
-  for (char c : key) {
-    if (std::isspace(static_cast<unsigned char>(c)) != 0) {
-      if (!out.empty() && out.back() != ' ') out += ' ';
-    } else {
-      out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    }
-  }
-  while (!out.empty() && out.back() == ' ') out.pop_back();
   return out;
 }
 
@@ -106,22 +93,6 @@ const EnviMapInfo& requireUtmMapInfo(const EnviHeader& header, const std::filesy
     throw InputError(hdr, where, "expected a UTM zone 1..60, found " + std::to_string(info.zone));
   }
   return info;
-}
-
-// `data ignore value`, if the header has one (NaN allowed: it is what hsmap writes).
-std::optional<double> dataIgnoreValue(const EnviHeader& header, const std::filesystem::path& hdr) {
-  for (const auto& [key, value] : header.other_fields) {
-    if (normaliseKey(key) != "data ignore value") continue;
-    const std::string text = value;
-    char* end = nullptr;
-    const double number = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size()) {
-      throw InputError(hdr, InputError::atKey("data ignore value"),
-                       "expected a number, found '" + text + "'");
-    }
-    return number;
-  }
-  return std::nullopt;
 }
 
 void registerGdalOnce() {
@@ -321,7 +292,8 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
   const EnviHeader& header = reader.header();
   const std::filesystem::path& data_path = reader.dataPath();
   const EnviMapInfo& map = requireUtmMapInfo(header, envi_header);
-  const std::optional<double> ignore_value = dataIgnoreValue(header, envi_header);
+  // NaN (what hsmap writes) reads as none: float data get NaN nodata below.
+  const std::optional<float> ignore_value = enviDataIgnoreValue(header, envi_header);
 
   registerGdalOnce();
   GdalErrorCapture errors;
@@ -360,7 +332,8 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
                              -map.pixel_size_y};
   GDALSetGeoTransform(vrt.get(), geo_transform);
   const std::string symbol = wavelengthSymbol(header.wavelength_units);
-  std::optional<double> nodata = ignore_value;
+  std::optional<double> nodata;
+  if (ignore_value) nodata = *ignore_value;
   if (!nodata && isFloat(header.data_type)) nodata = std::numeric_limits<double>::quiet_NaN();
 
   for (int b = 0; b < header.bands; ++b) {
