@@ -105,6 +105,12 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       ->check(CLI::PositiveNumber);
   command->add_flag("!--no-geotiff", options.geotiff,
                     "Skip hyperspectral/ortho.tif (the ENVI ortho-image is always written)");
+  command->add_option("--extrinsic-rounds", options.extrinsic_rounds,
+                      "sequential: rounds of the RGB-UHI extrinsic refinement from the RGB and "
+                      "hyperspectral ortho-images, each followed by a new cast (0: keep survey.yaml's "
+                      "guess)")
+      ->default_val(options.extrinsic_rounds)
+      ->check(CLI::Range(0, 10));
   command->add_option("--seabed-depth", options.seabed_depth_m,
                       "planar: the flat seabed's depth (z in W, metres down; default: estimated "
                       "from RGB frame pairs scaled by the INS)");
@@ -175,6 +181,9 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   if (indexOf(stages, "products") >= first && indexOf(stages, "products") <= last) {
     record.options["ortho_pixel_m"] = formatDouble(options.ortho_pixel_m);
     record.options["geotiff"] = options.geotiff ? "true" : "false";
+    if (options.variant == "sequential") {
+      record.options["extrinsic_rounds"] = std::to_string(options.extrinsic_rounds);
+    }
   }
 
   auto finishStage = [&](const std::string& name, double seconds) {

@@ -13,7 +13,9 @@
 //                scaled by the INS: pipelines/surface/flat_seabed.h)
 //   both         products (docs/PRODUCTS.md): every scan line cast onto the
 //                surface, the hyperspectral ortho-image, its quick-look,
-//                GeoTIFF and ancillary layers, the RGB ortho-image of the mesh
+//                GeoTIFF and ancillary layers, the RGB ortho-image of the mesh;
+//                for sequential, --extrinsic-rounds refinements of T_C_U from
+//                the two ortho-images, each followed by a new cast
 //   stacked      products only: the scan lines side by side (no poses, no
 //                map position), the picture without hsmap
 //
@@ -45,6 +47,9 @@ struct RunOptions {
   std::string surface = "dense";  // dense or sparse
   double ortho_pixel_m = 0.005;    // products: ortho-image pixel size
   bool geotiff = true;             // products: also write hyperspectral/ortho.tif
+  // sequential: rounds of the extrinsic refinement from the RGB and
+  // hyperspectral ortho-images (0: keep survey.yaml's guess).
+  int extrinsic_rounds = 2;
   // planar: the flat seabed's z in W (m, down); estimated when absent.
   std::optional<double> seabed_depth_m;
 };

@@ -1,12 +1,15 @@
 #include "tools/hsmap/run_stages.h"
 
+#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <ostream>
 
+#include "core/io/geotiff_export.h"
 #include "core/io/ply_io.h"
 #include "core/io/results_folder.h"
 #include "core/survey/pose_tables.h"
+#include "core/survey/run_calibration.h"
 #include "core/geometry/utm_projection.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/util/input_error.h"
@@ -17,6 +20,7 @@
 #include "pipelines/georef/planar_georef.h"
 #include "pipelines/georef/sequential_georef.h"
 #include "pipelines/hyperspectral/hyperspectral_ortho.h"
+#include "pipelines/hyperspectral/extrinsic_refinement.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
 #include "pipelines/hyperspectral/stacked_products.h"
 #include "pipelines/surface/dense_surface.h"
@@ -173,6 +177,72 @@ GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendRe
 }
 
 
+namespace {
+
+// One cast of every scan line onto the mesh: the hyperspectral products in
+// RUN/hyperspectral (the GeoTIFF only when `geotiff`).
+HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
+                                 const MeshRayCaster& mesh, const UtmProjection& projection,
+                                 const RunOptions& options, bool geotiff, std::ostream& out) {
+  HyperspectralOptions products;
+  products.pixel_m = options.ortho_pixel_m;
+  products.write_geotiff = geotiff;
+  const HyperspectralReport report = writeHyperspectralOrtho(
+      *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
+      projection, options.out / "hyperspectral", products, out);
+  out << report.summary();
+  return report;
+}
+
+SE3d toSe3(const RigidTransformConfig& T) { return SE3d(T.rotation, T.translation_m); }
+
+// The reference paper's refinement of T_C_U (pipelines/hyperspectral/
+// extrinsic_refinement.h), `rounds` times: match the RGB and hyperspectral
+// ortho-images, refine, rewrite the line poses and calibration.yaml, cast
+// again; `report` becomes the last cast's.
+void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, const MeshRayCaster& mesh,
+                     const UtmProjection& projection, const RunOptions& options, HyperspectralReport& report,
+                     std::ostream& out) {
+  const fs::path calibration_yaml = options.out / results_paths::calibration_yaml;
+  RunCalibration calibration = readRunCalibration(calibration_yaml);
+  const ExtrinsicPrior prior{toSe3(survey.config.uhi.T_C_U), survey.config.uhi.sigma_rotation_deg,
+                             survey.config.uhi.sigma_translation_m};
+  for (int round = 1; round <= options.extrinsic_rounds; ++round) {
+    const SE3d T_C_U_lines = toSe3(calibration.T_C_U);
+    out << "products: extrinsic refinement, round " << round << " of " << options.extrinsic_rounds << "\n";
+    const ExtrinsicRefinementResult result = refineExtrinsicInRun(
+        options.out, T_C_U_lines, survey.config.uhi.camera, prior, projection, ExtrinsicRefinementOptions{}, out);
+    if (!result.refined) {
+      out << "products: T_C_U kept at " << (round == 1 ? "the survey's guess" : "the last round's result")
+          << "\n";
+      for (const auto& warning : result.warnings) {
+        calibration.warnings.push_back("extrinsic refinement, round " + std::to_string(round) + ": " + warning);
+      }
+      writeRunCalibration(calibration_yaml, calibration);
+      break;
+    }
+    line_poses = updatedLinePoses(line_poses, T_C_U_lines, result.T_C_U);
+    std::vector<TimedPose> lines_timed;
+    for (const LinePose& line : line_poses) lines_timed.push_back({line.t, line.T});
+    writeLinePoseTable(options.out / results_paths::trajectory_uhi_lines, line_poses);
+    writeTumTrajectory(options.out / "trajectory/uhi_lines.tum", lines_timed);
+    calibration.T_C_U.rotation = result.T_C_U.q;
+    calibration.T_C_U.translation_m = result.T_C_U.t;
+    calibration.sigma_rotation_deg = result.sigma_rotation_deg;
+    calibration.sigma_translation_m = result.sigma_translation_m;
+    calibration.warnings = {"T_C_U refined from the RGB and hyperspectral ortho-images (" +
+                                std::to_string(result.inliers) + " tie points, round " +
+                                std::to_string(round) + "); time_offset_s is the survey.yaml guess: the " +
+                                calibration.variant + " variant does not estimate it"};
+    writeRunCalibration(calibration_yaml, calibration);
+    out << "products: wrote the refined T_C_U into " << calibration_yaml.string() << " and the scan line poses "
+        << "into " << results_paths::trajectory_uhi_lines << "; casting again\n";
+    report = castProducts(survey, line_poses, mesh, projection, options, false, out);
+  }
+}
+
+}  // namespace
+
 void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
   if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
   if (options.variant == "stacked") {
@@ -193,18 +263,23 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
     throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
                                        std::to_string(ply.vertices.size()) + " vertices");
   }
-  HyperspectralOptions products;
-  products.pixel_m = options.ortho_pixel_m;
-  products.write_geotiff = options.geotiff;
   const UtmProjection projection(survey.origin);
-  HyperspectralReport report;
-  {
-    const MeshRayCaster mesh(ply.vertices, ply.triangles);
-    report = writeHyperspectralOrtho(*survey.cube, survey.wavelengths_nm,
-                                     PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
-                                     projection, options.out / "hyperspectral", products, out);
+  const bool refine = options.variant == "sequential" && options.extrinsic_rounds > 0;
+  // With a refinement to follow, the GeoTIFF is exported once, from the
+  // last cast's ENVI ortho-image.
+  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  HyperspectralReport report =
+      castProducts(survey, line_poses, mesh, projection, options, options.geotiff && !refine, out);
+  if (refine) {
+    refineExtrinsic(survey, line_poses, mesh, projection, options, report, out);
+    if (options.geotiff) {
+      const auto start = std::chrono::steady_clock::now();
+      report.ortho_tif = options.out / "hyperspectral/ortho.tif";
+      exportEnviToCog(report.ortho_hdr, report.ortho_tif, HyperspectralOptions{}.geotiff);
+      out << "products: GeoTIFF written in "
+          << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+    }
   }
-  out << report.summary();
   out << "wrote " << report.ortho_hdr.string();
   for (const fs::path& path : {report.ortho_tif, report.quicklook_png, report.ancillary_hdr}) {
     if (!path.empty()) out << ", " << path.string();

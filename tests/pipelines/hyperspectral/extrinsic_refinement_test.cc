@@ -1,0 +1,379 @@
+#include "pipelines/hyperspectral/extrinsic_refinement.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "core/geometry/pushbroom_camera.h"
+#include "core/geometry/so3.h"
+#include "core/io/envi_writer.h"
+#include "core/io/ply_io.h"
+#include "tests/support/temp_folder.h"
+
+namespace hsmap {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+PushbroomParameters uhiCamera() {
+  PushbroomParameters camera;
+  camera.samples = 1920;
+  camera.f = 1500.0;
+  camera.cx = 962.0;
+  camera.distortion = {0.015, -0.002};
+  return camera;
+}
+
+// Rugged terrain below the vehicle: W is North-East-Down, the seabed's depth
+// varies by +-0.4 m so that the lever arm and the rotation are told apart.
+double seabedDepth(double north, double east) {
+  return 2.0 + 0.25 * std::sin(3.0 * north) + 0.15 * std::cos(4.0 * east) + 0.1 * east;
+}
+
+// RGB camera looking down (z_C = down), moving north 1 cm per line with a
+// little wobble.
+SE3d cameraPose(int line) {
+  const Eigen::Vector3d wobble(0.02 * std::sin(0.05 * line), 0.015 * std::cos(0.03 * line), 0.0);
+  return SE3d(expSO3(wobble), Eigen::Vector3d(0.01 * line, 0.05 * std::sin(0.02 * line), 0.0));
+}
+
+// The true extrinsic: the UHI's line (x_U) across track, as in the surveys.
+SE3d trueExtrinsic() {
+  return SE3d(expSO3(Eigen::Vector3d(0.0, 0.0, std::numbers::pi / 2)) *
+                  expSO3(Eigen::Vector3d(0.014, -0.009, 0.021)),
+              Eigen::Vector3d(0.02, 0.12, 0.01));
+}
+
+// The extrinsic guess: 2 deg and 5 cm off.
+SE3d guessedExtrinsic() {
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, -2.0, 0.5).normalized();
+  return SE3d(trueExtrinsic().q * expSO3(Eigen::Vector3d(2.0 * kDeg * axis)),
+              trueExtrinsic().t + Eigen::Vector3d(0.03, -0.03, 0.025));
+}
+
+// Where the ray of (line, sample) meets the seabed under the true extrinsic.
+Eigen::Vector3d seenPoint(int line, double sample) {
+  const PushbroomCamera camera(uhiCamera());
+  const SE3d T_W_U = cameraPose(line) * trueExtrinsic();
+  const Eigen::Vector3d ray_W = T_W_U.q * *camera.unproject(sample);
+  double s = 2.0;
+  for (int i = 0; i < 50; ++i) {  // fixed point on the depth along the ray
+    const Eigen::Vector3d p = T_W_U.t + s * ray_W;
+    s += (seabedDepth(p.x(), p.y()) - p.z()) / ray_W.z();
+  }
+  return T_W_U.t + s * ray_W;
+}
+
+// The run's line poses, made with the guess: T_W_U = T_W_C T_C_U_guess.
+std::vector<LinePose> runLinePoses(int lines) {
+  std::vector<LinePose> poses;
+  for (int k = 0; k < lines; ++k)
+    poses.push_back({k, 0.01 * k, cameraPose(k) * guessedExtrinsic()});
+  return poses;
+}
+
+std::vector<ExtrinsicTiePoint> tiePoints(int count, double sample_noise_px, std::mt19937& rng) {
+  std::uniform_int_distribution<int> line(0, 399);
+  std::uniform_real_distribution<double> sample(100.0, 1820.0);
+  std::normal_distribution<double> noise(0.0, sample_noise_px);
+  std::vector<ExtrinsicTiePoint> ties;
+  for (int i = 0; i < count; ++i) {
+    ExtrinsicTiePoint tie;
+    tie.line = line(rng);
+    const double u = sample(rng);
+    tie.p_W = seenPoint(int(tie.line), u);
+    tie.sample = u + noise(rng);
+    tie.range_m = 2.0;
+    ties.push_back(tie);
+  }
+  return ties;
+}
+
+ExtrinsicPrior surveyPrior() { return {guessedExtrinsic(), 2.0, 0.05}; }
+
+double rotationErrorDeg(const SE3d& a, const SE3d& b) {
+  return logSO3(Eigen::Quaterniond(a.q.conjugate() * b.q)).norm() / kDeg;
+}
+
+TEST(ExtrinsicRefinement, RecoversAKnownExtrinsicErrorFromTiePoints) {
+  std::mt19937 rng(5);
+  const std::vector<ExtrinsicTiePoint> ties = tiePoints(400, 0.5, rng);
+  ASSERT_GT(rotationErrorDeg(guessedExtrinsic(), trueExtrinsic()), 1.9);
+  ASSERT_GT((guessedExtrinsic().t - trueExtrinsic().t).norm(), 0.049);
+
+  // The noise model matches the simulated noise: 0.5 px at 2 m is 0.67 mm on the ground.
+  ExtrinsicRefinementOptions options;
+  options.sigma_match_m = 0.5 * 2.0 / 1500.0;
+  const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      ties, runLinePoses(400), guessedExtrinsic(), uhiCamera(), surveyPrior(), options);
+  ASSERT_TRUE(result.refined) << result.summary();
+  // 2 deg / 5 cm off -> within 0.02 deg and 3 mm (0.5 px noise, 400 ties).
+  EXPECT_LT(rotationErrorDeg(result.T_C_U, trueExtrinsic()), 0.02) << result.summary();
+  EXPECT_LT((result.T_C_U.t - trueExtrinsic().t).norm(), 0.003) << result.summary();
+  EXPECT_EQ(result.inliers + result.outliers, 400);
+  EXPECT_LT(result.outliers, 8);  // Cauchy scale 3: ~1 % of Gaussian inliers beyond it
+  EXPECT_GT(result.rms_u_before_px, 20.0);
+  EXPECT_LT(result.rms_u_after_px, 1.0);
+  EXPECT_LT(result.rms_across_after_px, 1.0);
+  // The reported 1-sigma is small and the error is within a few of it.
+  ASSERT_TRUE(result.sigma_rotation_deg && result.sigma_translation_m);
+  EXPECT_LT(result.sigma_rotation_deg->maxCoeff(), 0.02);
+  EXPECT_LT(result.sigma_translation_m->maxCoeff(), 0.003);
+  EXPECT_GT(result.sigma_translation_m->minCoeff(), 0.0);
+  const Eigen::Vector3d t_error = result.T_C_U.t - trueExtrinsic().t;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LT(std::abs(t_error[i]), 4.0 * (*result.sigma_translation_m)[i]);
+  EXPECT_NE(result.summary().find("inliers"), std::string::npos);
+}
+
+TEST(ExtrinsicRefinement, WithoutTiePointsKeepsTheExtrinsicAndSaysSo) {
+  const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      {}, runLinePoses(10), guessedExtrinsic(), uhiCamera(), surveyPrior());
+  EXPECT_FALSE(result.refined);
+  EXPECT_TRUE(result.T_C_U.q.isApprox(guessedExtrinsic().q));
+  EXPECT_EQ(result.T_C_U.t, guessedExtrinsic().t);
+  EXPECT_FALSE(result.sigma_rotation_deg.has_value());
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_NE(result.warnings[0].find("T_C_U kept"), std::string::npos) << result.warnings[0];
+  EXPECT_NE(result.summary().find("not refined"), std::string::npos);
+}
+
+TEST(ExtrinsicRefinement, TiePointsOnLinesWithoutPosesAreSkippedAndReported) {
+  std::mt19937 rng(6);
+  std::vector<ExtrinsicTiePoint> ties = tiePoints(3, 0.0, rng);
+  for (ExtrinsicTiePoint& tie : ties) tie.line += 10000;
+  const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      ties, runLinePoses(400), guessedExtrinsic(), uhiCamera(), surveyPrior());
+  EXPECT_FALSE(result.refined);
+  ASSERT_EQ(result.warnings.size(), 2u);
+  EXPECT_NE(result.warnings[0].find("3 tie points skipped"), std::string::npos);
+}
+
+TEST(ExtrinsicRefinement, RejectsOutliers) {
+  std::mt19937 rng(7);
+  std::vector<ExtrinsicTiePoint> ties = tiePoints(300, 0.5, rng);
+  // A fifth of the matches are wrong: their points are 5-30 cm away.
+  std::uniform_real_distribution<double> offset(-0.3, 0.3);
+  int wrong = 0;
+  for (std::size_t i = 0; i < ties.size(); i += 5, ++wrong) {
+    Eigen::Vector3d shift(offset(rng), offset(rng), 0.0);
+    if (shift.norm() < 0.05) shift = Eigen::Vector3d(0.1, -0.1, 0.0);
+    ties[i].p_W += shift;
+  }
+  const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      ties, runLinePoses(400), guessedExtrinsic(), uhiCamera(), surveyPrior());
+  ASSERT_TRUE(result.refined) << result.summary();
+  EXPECT_GE(result.outliers, wrong - 3) << result.summary();
+  EXPECT_LE(result.outliers, wrong + 6) << result.summary();
+  EXPECT_EQ(std::int64_t(result.used.size()), result.inliers);
+  EXPECT_LT(rotationErrorDeg(result.T_C_U, trueExtrinsic()), 0.03) << result.summary();
+  EXPECT_LT((result.T_C_U.t - trueExtrinsic().t).norm(), 0.005) << result.summary();
+}
+
+// A flat textured seabed 1.5 m square at down 2 m, 1 cm quads whose vertex
+// colours are random blobs, and the grid of 5 mm around it.
+struct TexturedSeabed {
+  UtmProjection projection{GeodeticPoint{43.0, 5.0, 0.0}};
+  PlyMesh mesh;
+  OrthoGrid grid;
+
+  TexturedSeabed() {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<Eigen::Vector3d> blobs;  // north, east, radius
+    for (int i = 0; i < 400; ++i) {
+      blobs.emplace_back(-0.8 + 1.6 * unit(rng), -0.8 + 1.6 * unit(rng), 0.01 + 0.03 * unit(rng));
+    }
+    auto colour = [&](double n, double e) {
+      double value = 60.0;
+      for (const Eigen::Vector3d& blob : blobs) {
+        const double d2 = (n - blob.x()) * (n - blob.x()) + (e - blob.y()) * (e - blob.y());
+        value += 150.0 * std::exp(-d2 / (2.0 * blob.z() * blob.z()));
+      }
+      const auto byte = std::uint8_t(std::clamp(value, 0.0, 255.0));
+      return Eigen::Matrix<std::uint8_t, 3, 1>(byte, byte, std::uint8_t(byte / 2));
+    };
+    const int cells = 150;
+    for (int i = 0; i <= cells; ++i) {
+      for (int j = 0; j <= cells; ++j) {
+        const double n = -0.75 + 0.01 * i, e = -0.75 + 0.01 * j;
+        mesh.vertices.emplace_back(n, e, 2.0);
+        mesh.colors.push_back(colour(n, e));
+      }
+    }
+    for (int i = 0; i < cells; ++i) {
+      for (int j = 0; j < cells; ++j) {
+        const int a = i * (cells + 1) + j, b = a + 1, c = a + cells + 1, d = c + 1;
+        mesh.triangles.emplace_back(a, b, d);
+        mesh.triangles.emplace_back(a, d, c);
+      }
+    }
+    Eigen::AlignedBox2d box;
+    for (double n : {-0.75, 0.75})
+      for (double e : {-0.75, 0.75}) box.extend(projection.nedToUtm({n, e, 0.0}));
+    grid = OrthoGrid::coveringUtm(box, 0.005, projection.zone(), projection.northernHemisphere());
+  }
+};
+
+TEST(ExtrinsicRefinement, MatchingFindsTheShiftBetweenTheOrthoImagesAndTiesTheRightPixels) {
+  const TexturedSeabed seabed;
+  const RgbOrthoRenderer renderer(seabed.mesh, seabed.grid, seabed.projection);
+  cv::Mat bgra;
+  renderer.renderColours(0, 0, seabed.grid.cols, seabed.grid.rows, bgra);
+  const cv::Mat rgb_luma = rgbLuminance(bgra);
+  // The hyperspectral ortho-image: the same content moved by (7.3, -4.6)
+  // pixels, with another gain and offset.
+  const Eigen::Vector2d shift(7.3, -4.6);
+  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, shift.x(), 0, 1, shift.y());
+  cv::Mat hyper_luma;
+  cv::warpAffine(rgb_luma, hyper_luma, move, rgb_luma.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
+                 cv::Scalar(std::numeric_limits<double>::quiet_NaN()));
+  hyper_luma = 0.01 * hyper_luma + 0.2;
+  // Ancillary: line = row, sample = 1000 + col, range 2 m.
+  cv::Mat ancillary(rgb_luma.size(), CV_32FC4);
+  for (int r = 0; r < ancillary.rows; ++r)
+    for (int c = 0; c < ancillary.cols; ++c)
+      ancillary.at<cv::Vec4f>(r, c) = {float(r), 1000.0f + c, 2.0f, 0.0f};
+
+  std::vector<ExtrinsicTiePoint> ties;
+  const OrthoMatchCounts counts =
+      matchOrthoImages(rgb_luma, hyper_luma, ancillary, renderer, {}, ties);
+  EXPECT_GT(counts.patches, 20);
+  EXPECT_GE(counts.tie_points, counts.patches * 3 / 4);
+  ASSERT_EQ(std::int64_t(ties.size()), counts.tie_points);
+  for (const ExtrinsicTiePoint& tie : ties) {
+    EXPECT_LT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 0.3)
+        << tie.rgb_col_row.transpose();
+    // Nearest-pixel ancillary of the match, the point under the RGB position
+    // moved by the same rounding.
+    const Eigen::Vector2d h_pixel = tie.hyper_col_row.array().round();
+    EXPECT_EQ(tie.line, std::llround(h_pixel.y()));
+    EXPECT_DOUBLE_EQ(tie.sample, 1000.0 + h_pixel.x());
+    const Eigen::Vector2d g_moved = tie.rgb_col_row + (h_pixel - tie.hyper_col_row);
+    const Eigen::Vector2d pixel_of_point = seabed.grid.pixelOfW(tie.p_W, seabed.projection);
+    EXPECT_LT((pixel_of_point - g_moved).norm(), 0.01);
+    EXPECT_NEAR(tie.p_W.z(), 2.0, 1e-4);
+    EXPECT_GT(tie.ncc, 0.9);
+  }
+}
+
+TEST(ExtrinsicRefinement, BlankImagesGiveNoMatches) {
+  const TexturedSeabed seabed;
+  const RgbOrthoRenderer renderer(seabed.mesh, seabed.grid, seabed.projection);
+  const cv::Mat flat(seabed.grid.rows, seabed.grid.cols, CV_32F, cv::Scalar(0.5));
+  const cv::Mat ancillary(flat.size(), CV_32FC4, cv::Scalar::all(1.0));
+  std::vector<ExtrinsicTiePoint> ties;
+  const OrthoMatchCounts counts = matchOrthoImages(flat, flat, ancillary, renderer, {}, ties);
+  EXPECT_GT(counts.patches, 20);
+  EXPECT_EQ(counts.textured, 0);
+  EXPECT_TRUE(ties.empty());
+}
+
+TEST(ExtrinsicRefinement, BandCombinationFitsTheRgbResponseFromTheVisibleBands) {
+  // 40 x 30 pixels, 6 bands; the "RGB camera" sees 3 b(460) + b(520) - 0.5 b(620) + 5.
+  const testing::TempFolder folder;
+  const std::vector<double> wavelengths{420.0, 460.0, 520.0, 560.0, 620.0, 700.0};
+  EnviHeader header;
+  header.samples = 30;
+  header.lines = 40;
+  header.bands = 6;
+  header.wavelength = wavelengths;
+  header.wavelength_units = "Nanometers";
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  cv::Mat rgb_luma(40, 30, CV_32F);
+  {
+    EnviWriter writer(folder / "ortho.hdr", header);
+    Eigen::MatrixXf line(6, 30);
+    for (int r = 0; r < 40; ++r) {
+      for (int c = 0; c < 30; ++c) {
+        for (int b = 0; b < 6; ++b) line(b, c) = unit(rng);
+        if (r == 7 && c == 9) line(2, c) = std::numeric_limits<float>::quiet_NaN();
+        rgb_luma.at<float>(r, c) = 3.0f * line(1, c) + line(2, c) - 0.5f * line(4, c) + 5.0f;
+      }
+      writer.writeLine(line);
+    }
+    writer.finish();
+  }
+  const EnviReader ortho(folder / "ortho.hdr");
+  ExtrinsicRefinementOptions options;
+  options.ridge = 1e-9;
+  options.fit_stride_px = 1;
+  const BandCombination fitted = hyperspectralLuminance(ortho, wavelengths, rgb_luma, options);
+  ASSERT_TRUE(fitted.fitted);
+  EXPECT_GT(fitted.r2, 0.999999);
+  const std::vector<double> expected{0.0, 3.0, 1.0, 0.0, -0.5, 0.0};
+  for (int b = 0; b < 6; ++b) EXPECT_NEAR(fitted.weights[b], expected[b], 1e-4) << "band " << b;
+  EXPECT_NEAR(fitted.offset, 5.0, 1e-4);
+  EXPECT_TRUE(std::isnan(fitted.luma.at<float>(7, 9)));
+  EXPECT_NEAR(fitted.luma.at<float>(3, 4), rgb_luma.at<float>(3, 4), 1e-4);
+
+  // Fixed weights: luminance-like, summing to one over the visible bands only.
+  options.fit_band_weights = false;
+  const BandCombination fixed = hyperspectralLuminance(ortho, wavelengths, rgb_luma, options);
+  EXPECT_FALSE(fixed.fitted);
+  EXPECT_EQ(fixed.weights[0], 0.0);
+  EXPECT_EQ(fixed.weights[5], 0.0);
+  double sum = 0.0;
+  for (double w : fixed.weights) sum += w;
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  EXPECT_GT(fixed.weights[2], fixed.weights[1]);  // green above blue
+}
+
+TEST(ExtrinsicRefinement, UpdatedLinePosesUseTheNewExtrinsic) {
+  const std::vector<LinePose> run = runLinePoses(5);
+  const std::vector<LinePose> updated = updatedLinePoses(run, guessedExtrinsic(), trueExtrinsic());
+  ASSERT_EQ(updated.size(), run.size());
+  for (int k = 0; k < 5; ++k) {
+    const SE3d expected = cameraPose(k) * trueExtrinsic();
+    EXPECT_EQ(updated[k].line, run[k].line);
+    EXPECT_EQ(updated[k].t, run[k].t);
+    EXPECT_LT((updated[k].T.t - expected.t).norm(), 1e-12);
+    EXPECT_LT(rotationErrorDeg(updated[k].T, expected), 1e-9);
+  }
+}
+
+TEST(ExtrinsicRefinement, GridFromTheHeaderMapInfoIsTheWrittenGrid) {
+  OrthoGrid grid;
+  grid.pixel_m = 0.005;
+  grid.west_m = 663017.08;
+  grid.north_m = 4762775.66;
+  grid.cols = 728;
+  grid.rows = 3902;
+  grid.zone = 31;
+  grid.northern = true;
+  EnviHeader header;
+  header.samples = grid.cols;
+  header.lines = grid.rows;
+  header.bands = 1;
+  header.map_info = grid.mapInfo();
+  const OrthoGrid back = orthoGridFromHeader(header);
+  EXPECT_EQ(back.cols, grid.cols);
+  EXPECT_EQ(back.rows, grid.rows);
+  EXPECT_DOUBLE_EQ(back.west_m, grid.west_m);
+  EXPECT_DOUBLE_EQ(back.north_m, grid.north_m);
+  EXPECT_DOUBLE_EQ(back.pixel_m, grid.pixel_m);
+  EXPECT_EQ(back.zone, 31);
+  EXPECT_TRUE(back.northern);
+  header.map_info.reset();
+  EXPECT_THROW(orthoGridFromHeader(header), std::invalid_argument);
+}
+
+TEST(ExtrinsicRefinement, OptionsSayWhatIsWrong) {
+  ExtrinsicRefinementOptions options;
+  EXPECT_NO_THROW(options.validate());
+  options.search_radius_m = 0.0;
+  try {
+    options.validate();
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "ExtrinsicRefinementOptions: search_radius_m must be > 0, got 0");
+  }
+}
+
+}  // namespace
+}  // namespace hsmap
