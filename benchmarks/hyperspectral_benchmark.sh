@@ -48,7 +48,7 @@ for survey in "${surveys[@]}"; do
       stage_s=$(awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0;
                  for (i = 1; i <= n; ++i) s = s * 60 + t[i]; print s}' "$run.products.time")
     fi
-    lines=$(grep -oE "scan lines: [0-9]+ cast" "$run.products.log" "$run.products.time" 2>/dev/null |
+    lines=$(grep -ohE "scan lines: [0-9]+ cast" "$run.products.log" "$run.products.time" 2>/dev/null |
             head -1 | grep -oE "[0-9]+" || true)
     peak_kb=$(grep "Maximum resident set size" "$run.products.time" | awk '{print $NF}')
     ortho_bytes=$(stat -c %s "$run/hyperspectral/ortho.raw" 2>/dev/null || echo 0)
