@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "tests/factors/factor_test_support.h"
+#include "tests/support/uhi_camera.h"
 
 namespace hsmap {
 namespace {
@@ -14,14 +15,7 @@ using test::evaluate;
 using test::poseBlock;
 using test::tangentJacobiansMatchNumeric;
 
-PushbroomParameters uhiCamera() {
-  PushbroomParameters camera;
-  camera.samples = 1920;
-  camera.f = 1500.0;
-  camera.cx = 962.0;
-  camera.distortion = {0.015, -0.002};
-  return camera;
-}
+PushbroomParameters uhiCamera() { return testing::presetUhiCamera(); }
 
 NoiseModel lineNoise() {
   Eigen::Vector2d sigmas(1.0, 0.5 / 1500.0);

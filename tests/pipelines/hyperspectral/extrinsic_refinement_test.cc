@@ -13,20 +13,14 @@
 #include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
 #include "tests/support/temp_folder.h"
+#include "tests/support/uhi_camera.h"
 
 namespace hsmap {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-PushbroomParameters uhiCamera() {
-  PushbroomParameters camera;
-  camera.samples = 1920;
-  camera.f = 1500.0;
-  camera.cx = 962.0;
-  camera.distortion = {0.015, -0.002};
-  return camera;
-}
+PushbroomParameters uhiCamera() { return testing::presetUhiCamera(); }
 
 // Rugged terrain below the vehicle: W is North-East-Down, the seabed's depth
 // varies by +-0.4 m so that the lever arm and the rotation are told apart.
