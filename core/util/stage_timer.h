@@ -40,6 +40,11 @@ class StageTimings {
   std::vector<std::pair<std::string, double>> seconds_;
 };
 
+// Wall seconds since `start` on the steady clock (for a stage's parts).
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 // Peak resident set size of this process so far, in MiB (getrusage).
 double peakResidentMemoryMb();
 

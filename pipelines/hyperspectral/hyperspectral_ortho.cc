@@ -31,10 +31,6 @@ namespace hsmap {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
 }
@@ -484,6 +480,15 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
   return report;
 }
 
+PlyMesh readSurfaceMesh(const std::filesystem::path& mesh_ply) {
+  PlyMesh ply = readPly(mesh_ply);
+  if (ply.triangles.empty()) {
+    throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
+                                       std::to_string(ply.vertices.size()) + " vertices");
+  }
+  return ply;
+}
+
 HyperspectralReport writeHyperspectralProducts(const Survey& survey,
                                                const std::vector<LinePose>& line_poses,
                                                const std::filesystem::path& mesh_ply,
@@ -493,11 +498,7 @@ HyperspectralReport writeHyperspectralProducts(const Survey& survey,
   options.validate();
   if (!survey.cube) throw std::invalid_argument("writeHyperspectralProducts: the survey's cube is not open");
   const auto start = Clock::now();
-  const PlyMesh ply = readPly(mesh_ply);
-  if (ply.triangles.empty()) {
-    throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
-                                       std::to_string(ply.vertices.size()) + " vertices");
-  }
+  const PlyMesh ply = readSurfaceMesh(mesh_ply);
   const MeshRayCaster mesh(ply.vertices, ply.triangles);
   const double mesh_s = secondsSince(start);
   const PushbroomCamera camera(options.camera.value_or(survey.config.uhi.camera));

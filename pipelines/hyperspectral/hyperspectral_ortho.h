@@ -82,6 +82,7 @@
 #include "core/io/envi_header.h"
 #include "core/io/envi_reader.h"
 #include "core/io/geotiff_export.h"
+#include "core/io/ply_io.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/pose_tables.h"
 #include "core/survey/survey.h"
@@ -170,6 +171,10 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
                                             const UtmProjection& projection,
                                             const std::filesystem::path& out_folder,
                                             const HyperspectralOptions& options, std::ostream& log);
+
+// The surface the lines are cast onto (RUN/map/mesh.ply): readPly's errors,
+// and InputError naming the file when it has no triangles.
+PlyMesh readSurfaceMesh(const std::filesystem::path& mesh_ply);
 
 // The products stage's entry point: the survey's cube, wavelengths, origin
 // and (unless options.camera) UHI camera; the mesh read from `mesh_ply`

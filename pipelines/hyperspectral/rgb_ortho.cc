@@ -33,10 +33,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("RGB ortho options: " + field + ": expected " + expected);
 }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/util/stage_timer.h"
 #include "pipelines/surface/delaunay_cells.h"
 #include "pipelines/surface/min_cut.h"
 #include "pipelines/surface/visibility_evidence.h"
@@ -13,14 +14,6 @@ namespace hsmap {
 using surface_detail::Delaunay;
 using surface_detail::LabelledDelaunay;
 using surface_detail::Point;
-
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 CellLabelling::CellLabelling(std::shared_ptr<const LabelledDelaunay> cells)
     : cells_(std::move(cells)) {}

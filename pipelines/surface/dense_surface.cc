@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/util/stage_timer.h"
 #include "pipelines/surface/surface_reconstruction.h"
 #include "pipelines/surface/surface_tiles.h"
 #include "pipelines/surface/vertex_colours.h"
@@ -22,10 +23,6 @@ namespace hsmap {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // At most `count` of `views`, evenly spaced through the list (the keyframes
 // arrive in track order, so these are spread along the track).

@@ -12,7 +12,6 @@
 #include "core/survey/run_calibration.h"
 #include "core/geometry/utm_projection.h"
 #include "core/raycast/mesh_ray_caster.h"
-#include "core/util/input_error.h"
 #include "core/util/progress.h"
 #include "pipelines/frontend/frontend_outputs.h"
 #include "pipelines/frontend/frontend_runner.h"
@@ -258,11 +257,7 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   out << "products: scan line poses from " << lines_csv.string() << ", surface from "
       << mesh_ply.string() << "\n";
   const std::vector<LinePose> line_poses = readLinePoseTable(lines_csv);
-  const PlyMesh ply = readPly(mesh_ply);
-  if (ply.triangles.empty()) {
-    throw InputError(mesh_ply, "", "expected a surface mesh (triangles), found a point cloud of " +
-                                       std::to_string(ply.vertices.size()) + " vertices");
-  }
+  const PlyMesh ply = readSurfaceMesh(mesh_ply);
   const UtmProjection projection(survey.origin);
   const bool refine = options.variant == "sequential" && options.extrinsic_rounds > 0;
   // With a refinement to follow, the GeoTIFF is exported once, from the
