@@ -29,6 +29,7 @@ def main():
     parser.add_argument("out", help="PNG to write")
     parser.add_argument("runs", nargs="+", help="LABEL=RUN_FOLDER")
     parser.add_argument("--title", default="")
+    parser.add_argument("--dpi", type=int, default=80, help="resolution of OUT.png")
     parser.add_argument("--aspect", action="append", default=[], help="LABEL=R: pixel height / width")
     parser.add_argument("--flip", action="append", default=[], help="LABEL: upside down")
     args = parser.parse_args()
@@ -59,7 +60,7 @@ def main():
     if args.title:
         figure.suptitle(args.title)
     figure.tight_layout()
-    figure.savefig(args.out, dpi=110)
+    figure.savefig(args.out, dpi=args.dpi)
     print(f"wrote {args.out}")
 
 
