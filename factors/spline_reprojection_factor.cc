@@ -17,8 +17,9 @@ namespace {
 constexpr int P = SE3d::kNumParameters;
 
 std::vector<Key> keysOf(const SplineSegment& segment, Key landmark_p_W) {
-  const auto i = static_cast<std::uint64_t>(segment.first_control_point);
-  return {S(i), S(i + 1), S(i + 2), S(i + 3), landmark_p_W};
+  std::vector<Key> keys = activeControlPointKeys(segment);
+  keys.push_back(landmark_p_W);
+  return keys;
 }
 
 // The residual of SplineReprojectionResidual with analytic Jacobians: the

@@ -5,7 +5,11 @@
 // factor-graph variable S(j) (a pose T_W_C, 7-scalar block), so a factor that
 // knows the timing can name the control points active at a time.
 
+#include <cstdint>
+#include <vector>
+
 #include "core/geometry/se3_bspline.h"
+#include "core/graph/key.h"
 
 namespace hsmap {
 
@@ -24,5 +28,11 @@ struct SplineTiming {
     return {spline.t0(), spline.dt(), spline.numControlPoints()};
   }
 };
+
+// The keys S(i) .. S(i+3) of a segment's four active control points.
+inline std::vector<Key> activeControlPointKeys(const SplineSegment& segment) {
+  const auto i = static_cast<std::uint64_t>(segment.first_control_point);
+  return {S(i), S(i + 1), S(i + 2), S(i + 3)};
+}
 
 }  // namespace hsmap
