@@ -130,6 +130,9 @@ class GraphProblem {
   // (Ceres then finds an independent set itself).
   std::shared_ptr<ceres::ParameterBlockOrdering> schurOrdering() const;
   std::size_t numEliminatedLandmarks() const { return eliminated_landmarks_.size(); }
+  // The landmarks schurOrdering() puts in group 0 (free landmarks, no two
+  // sharing a factor), in key order.
+  const std::vector<Key>& eliminatedLandmarks() const { return eliminated_landmarks_; }
 
   // Every factor at the current values, in graph order: one evaluation of
   // all whitened residuals by Ceres with `num_threads` threads, the robust

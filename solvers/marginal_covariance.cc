@@ -7,7 +7,24 @@
 #include <thread>
 #include <utility>
 
+#include "solvers/landmark_schur_covariance.h"
+
 namespace hsmap {
+
+namespace internal {
+
+[[noreturn]] void rankDeficient(const GraphProblem& problem) {
+  throw CovarianceRankDeficient(
+      "marginal covariance: the problem is rank deficient (its Jacobian does not have full "
+      "column rank over the " +
+      std::to_string(problem.numFreeParameters()) +
+      " free degrees of freedom), so the covariance is undefined. The usual cause is a free "
+      "gauge: hold one pose constant (e.g. constant = {X(0)}) or add absolute factors (INS "
+      "position/attitude, pose priors) that fix the world frame; a monocular problem also "
+      "needs its scale fixed");
+}
+
+}  // namespace internal
 
 namespace {
 
@@ -46,16 +63,7 @@ ceres::Covariance::Options ceresOptions(const CovarianceOptions& options) {
   return ceres_options;
 }
 
-[[noreturn]] void rankDeficient(const GraphProblem& problem) {
-  throw CovarianceRankDeficient(
-      "marginal covariance: the problem is rank deficient (its Jacobian does not have full "
-      "column rank over the " +
-      std::to_string(problem.numFreeParameters()) +
-      " free degrees of freedom), so the covariance is undefined. The usual cause is a free "
-      "gauge: hold one pose constant (e.g. constant = {X(0)}) or add absolute factors (INS "
-      "position/attitude, pose priors) that fix the world frame; a monocular problem also "
-      "needs its scale fixed");
-}
+using internal::rankDeficient;
 
 // Fewer residuals than degrees of freedom is rank deficient whatever the
 // values. Ceres' DENSE_SVD misses this case: its thin SVD of a wide Jacobian
@@ -71,6 +79,9 @@ std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
                                                    const CovarianceOptions& options) {
   checkKeys(problem, keys);
   checkResidualCount(problem);
+  if (options.algorithm == CovarianceOptions::Algorithm::landmark_schur) {
+    return internal::landmarkSchurMarginalCovariances(problem, keys, options);
+  }
   Values& values = problem.values();
   std::vector<std::pair<const double*, const double*>> pairs;
   for (const Key& key : keys) pairs.emplace_back(values.data(key), values.data(key));
@@ -95,6 +106,9 @@ Eigen::MatrixXd jointMarginalCovariance(GraphProblem& problem, const std::vector
                                         const CovarianceOptions& options) {
   checkKeys(problem, keys);
   checkResidualCount(problem);
+  if (options.algorithm == CovarianceOptions::Algorithm::landmark_schur) {
+    return internal::landmarkSchurJointCovariance(problem, keys, options);
+  }
   Values& values = problem.values();
   std::vector<const double*> blocks;
   int n = 0;

@@ -22,7 +22,11 @@
 //
 // Cost: sparse QR (SuiteSparseQR) of the whole Jacobian, dominated by the
 // Jacobian's size, whatever few variables are asked for. dense_svd is only
-// for small problems (it forms the dense J^T J).
+// for small problems (it forms the dense J^T J). landmark_schur eliminates
+// the landmarks (3x3 blocks) and factors only the dense reduced system of
+// the other variables: for bundle adjustment with many landmarks and a few
+// thousand other degrees of freedom at most it is much faster and lighter
+// than sparse_qr (solvers/landmark_schur_covariance.h).
 
 #include <Eigen/Core>
 #include <map>
@@ -36,7 +40,11 @@
 namespace hsmap {
 
 struct CovarianceOptions {
-  enum class Algorithm { sparse_qr, dense_svd };
+  // sparse_qr, dense_svd: ceres::Covariance (SPARSE_QR with SuiteSparse,
+  // DENSE_SVD). landmark_schur: Schur complement on the eliminated landmarks
+  // and a dense Cholesky of the reduced system (landmark_schur_covariance.h;
+  // at most 20 000 reduced degrees of freedom).
+  enum class Algorithm { sparse_qr, dense_svd, landmark_schur };
   Algorithm algorithm = Algorithm::sparse_qr;
   // 0 means every hardware thread.
   int num_threads = 0;
@@ -44,6 +52,9 @@ struct CovarianceOptions {
   bool apply_loss_function = true;
   // dense_svd: the problem counts as rank deficient when the ratio of the
   // smallest to the largest eigenvalue of J^T J is below this.
+  // landmark_schur: the same threshold on each landmark's 3x3 block of J^T J
+  // (eigenvalue ratio) and on the reciprocal condition estimate of the
+  // Jacobi-scaled reduced system.
   double min_reciprocal_condition_number = 1e-14;
 };
 

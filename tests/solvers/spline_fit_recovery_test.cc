@@ -6,17 +6,15 @@
 // the samples is sigma^2 p / n (p parameters, n residuals: the trace of the
 // hat matrix), and the actual RMS error must stay within 3x of that.
 //
-// The pose-sample factor is defined here (factors/ has no such measurement);
-// it uses the same spline evaluation as SplineReprojectionFactor.
+// The samples enter as SplinePoseFactors (factors/spline_pose_factor.h).
 
-#include <ceres/autodiff_cost_function.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "core/geometry/se3_bspline.h"
-#include "factors/ceres_factor.h"
+#include "factors/spline_pose_factor.h"
 #include "factors/spline_timing.h"
 #include "solvers/graph_solver.h"
 #include "tests/support/synthetic_transect.h"
@@ -24,39 +22,6 @@
 namespace hsmap {
 namespace {
 
-// r = log(T_measured^-1 * spline(S(i..i+3), u))   (6, [rho; phi])
-struct SplinePoseSampleResidual {
-  SE3d measured_inverse;
-  double u;
-  template <class T>
-  bool operator()(const T* s0, const T* s1, const T* s2, const T* s3, T* residual) const {
-    const T* const blocks[4] = {s0, s1, s2, s3};
-    const Vector6<T> r = (measured_inverse.cast<T>() * evaluateSe3Spline(blocks, T(u))).log();
-    for (int i = 0; i < 6; ++i) residual[i] = r[i];
-    return true;
-  }
-};
-
-class SplinePoseSampleFactor final : public CeresFactor {
- public:
-  SplinePoseSampleFactor(const SplineTiming& spline, double t, const SE3d& measured, NoiseModel noise)
-      : CeresFactor(keysAt(spline, t), std::move(noise), RobustLoss::none()),
-        measured_(measured),
-        u_(spline.segmentAt(t).u) {}
-  std::string name() const override { return "SplinePoseSampleFactor"; }
-  std::unique_ptr<ceres::CostFunction> createCostFunction() const override {
-    return std::make_unique<ceres::AutoDiffCostFunction<SplinePoseSampleResidual, 6, 7, 7, 7, 7>>(
-        new SplinePoseSampleResidual{measured_.inverse(), u_});
-  }
-
- private:
-  static std::vector<Key> keysAt(const SplineTiming& spline, double t) {
-    const int i = spline.segmentAt(t).first_control_point;
-    return {S(i), S(i + 1), S(i + 2), S(i + 3)};
-  }
-  SE3d measured_;
-  double u_;
-};
 
 TEST(SplineFitRecovery, RecoversASmoothMotionFromNoisyPoseSamples) {
   constexpr double kDeg = M_PI / 180.0;
@@ -82,7 +47,7 @@ TEST(SplineFitRecovery, RecoversASmoothMotionFromNoisyPoseSamples) {
   for (int k = 0; k <= 500; ++k) sample_times.push_back(std::min(k * 0.02, duration));
   for (const double t : sample_times) {
     const SE3d measured = motion(t) * SE3d::exp(test::gaussian6(rng, kSigmaPosition, kSigmaRotation));
-    graph.emplace<SplinePoseSampleFactor>(timing, t, measured, noise);
+    graph.emplace<SplinePoseFactor>(timing, t, measured, noise);
   }
   Values values;
   for (int j = 0; j < timing.num_control_points; ++j) {
