@@ -70,6 +70,8 @@ int segmentAt(const VisionFrames& frames, const FrontendResult& frontend, double
   return frontend.frames[std::size_t(frames.record[j])].segment;
 }
 
+}  // namespace
+
 // sqrt(correlation time / median fix interval), at least 1 (georef_options.h).
 double insCorrelationFactor(const InsBodyTrack& ins, double correlation_time_s) {
   if (!(correlation_time_s > 0.0) || ins.fixes().size() < 2) return 1.0;
@@ -81,7 +83,18 @@ double insCorrelationFactor(const InsBodyTrack& ins, double correlation_time_s) 
   return std::sqrt(std::max(1.0, correlation_time_s / intervals[intervals.size() / 2]));
 }
 
-}  // namespace
+InsNoise surveyInsNoise(const Survey& survey, const InsBodyTrack& ins, const GeorefOptions& options) {
+  const InsConfig& ins_config = survey.config.ins;
+  InsNoise noise;
+  noise.sigma_horizontal_m = ins_config.sigma_horizontal_m;
+  noise.sigma_depth_m = ins_config.sigma_depth_m;
+  noise.position_correlation_factor = insCorrelationFactor(ins, options.ins_correlation_time_s);
+  noise.sigma_attitude_rad = Eigen::Vector3d(ins_config.sigma_attitude_deg[0],
+                                             ins_config.sigma_attitude_deg[1],
+                                             ins_config.sigma_attitude_deg[2]) *
+                             kDegreesToRadians;
+  return noise;
+}
 
 GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& frontend,
                                  const GeorefOptions& options, const GeorefProgress& progress) {
@@ -135,15 +148,7 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   }
   std::vector<SE3d> T_W_K_before;
   for (const Keyframe& k : map.keyframes()) T_W_K_before.push_back(k.T_F_C);
-  InsNoise noise;
-  noise.sigma_horizontal_m = ins_config.sigma_horizontal_m;
-  noise.sigma_depth_m = ins_config.sigma_depth_m;
-  noise.position_correlation_factor = insCorrelationFactor(ins, options.ins_correlation_time_s);
-
-  noise.sigma_attitude_rad = Eigen::Vector3d(ins_config.sigma_attitude_deg[0],
-                                             ins_config.sigma_attitude_deg[1],
-                                             ins_config.sigma_attitude_deg[2]) *
-                             kDegreesToRadians;
+  const InsNoise noise = surveyInsNoise(survey, ins, options);
   if (progress) progress("bundle adjustment", 0, 1);
   result.bundle = adjustGeoreferencedMap(map, links, ins, T_B_C, noise, survey.config.rgb.camera,
                                          options.bundle);

@@ -20,6 +20,8 @@
 
 #include "core/survey/survey.h"
 #include "pipelines/frontend/frontend_result.h"
+#include "pipelines/georef/georef_bundle_adjuster.h"
+#include "pipelines/georef/ins_body_track.h"
 #include "pipelines/georef/georef_options.h"
 #include "pipelines/georef/georef_result.h"
 
@@ -27,6 +29,12 @@ namespace hsmap {
 
 // Called with a step name and (done, total) counts, e.g. ("frames", 120, 1201).
 using GeorefProgress = std::function<void(const std::string& step, int done, int total)>;
+
+// The INS noise the bundle adjustment (and the joint problem) weighs the
+// fixes with: survey.yaml's sigmas, the position sigmas inflated by the
+// correlation factor sqrt(ins_correlation_time_s / median fix interval)
+// (at least 1; georef_options.h).
+InsNoise surveyInsNoise(const Survey& survey, const InsBodyTrack& ins, const GeorefOptions& options);
 
 GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& frontend,
                                  const GeorefOptions& options,

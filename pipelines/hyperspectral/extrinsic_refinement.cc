@@ -589,23 +589,21 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
   return result;
 }
 
-ExtrinsicRefinementResult refineExtrinsicInRun(
-    const std::filesystem::path& run, const SE3d& T_C_U_lines, const PushbroomParameters& camera,
-    const ExtrinsicPrior& prior, const UtmProjection& projection,
-    const ExtrinsicRefinementOptions& options, std::ostream& log) {
+RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
+                                   const UtmProjection& projection,
+                                   const ExtrinsicRefinementOptions& options, std::ostream& log) {
   options.validate();
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
-  const std::vector<LinePose> line_poses = readLinePoseTable(run / "trajectory" / "uhi_lines.csv");
   const EnviReader ortho(run / "hyperspectral" / "ortho.hdr");
   const EnviReader ancillary_reader(run / "hyperspectral" / "ancillary.hdr");
   const OrthoGrid grid = orthoGridFromHeader(ortho.header());
   if (ancillary_reader.samples() != grid.cols || ancillary_reader.lines() != grid.rows ||
       ancillary_reader.bands() < 3) {
     throw std::runtime_error(
-        "refineExtrinsicInRun: " + (run / "hyperspectral" / "ancillary.hdr").string() +
+        "collectTiePointsInRun: " + (run / "hyperspectral" / "ancillary.hdr").string() +
         " is not on the ortho-image's grid or has fewer than 3 bands");
   }
 
@@ -615,12 +613,13 @@ ExtrinsicRefinementResult refineExtrinsicInRun(
   cv::Mat bgra;
   renderer.renderColours(0, 0, grid.cols, grid.rows, bgra);
   const cv::Mat rgb_luma = rgbLuminance(bgra);
-  log << "extrinsic refinement: RGB ortho rendered (" << grid.cols << " x " << grid.rows << "), "
+  log << "tie points: RGB ortho rendered (" << grid.cols << " x " << grid.rows << "), "
       << fixed(seconds(), 1) << " s\n";
 
-  const BandCombination combination =
+  RunTiePoints out;
+  BandCombination combination =
       hyperspectralLuminance(ortho, ortho.header().wavelength, rgb_luma, options);
-  log << "extrinsic refinement: hyperspectral luminance ("
+  log << "tie points: hyperspectral luminance ("
       << (combination.fitted ? "fitted, R^2 " + fixed(combination.r2, 3)
                              : std::string("fixed weights"))
       << "), " << fixed(seconds(), 1) << " s\n";
@@ -629,31 +628,41 @@ ExtrinsicRefinementResult refineExtrinsicInRun(
   Eigen::MatrixXf line;
   for (int r = 0; r < grid.rows; ++r) {
     ancillary_reader.readLine(r, line);
-    cv::Vec4f* out = ancillary.ptr<cv::Vec4f>(r);
+    cv::Vec4f* row = ancillary.ptr<cv::Vec4f>(r);
     for (int c = 0; c < grid.cols; ++c) {
-      for (int b = 0; b < 4 && b < ancillary_reader.bands(); ++b) out[c][b] = line(b, c);
+      for (int b = 0; b < 4 && b < ancillary_reader.bands(); ++b) row[c][b] = line(b, c);
     }
   }
 
-  std::vector<ExtrinsicTiePoint> tie_points;
-  const OrthoMatchCounts counts =
-      matchOrthoImages(rgb_luma, combination.luma, ancillary, renderer, options, tie_points);
-  log << "extrinsic refinement: " << counts.patches << " patches, " << counts.textured
-      << " textured, " << counts.matched << " matched, " << counts.tie_points << " tie points, "
-      << fixed(seconds(), 1) << " s\n";
-
-  ExtrinsicRefinementResult result =
-      refineExtrinsicFromTiePoints(tie_points, line_poses, T_C_U_lines, camera, prior, options);
-  result.patches = counts.patches;
-  result.matches = counts.matched;
-  result.band_weights = combination.weights;
-  result.band_offset = combination.offset;
-  result.band_fit_r2 = combination.fitted ? combination.r2 : 0.0;
+  out.counts = matchOrthoImages(rgb_luma, combination.luma, ancillary, renderer, options,
+                                out.tie_points);
+  log << "tie points: " << out.counts.patches << " patches, " << out.counts.textured
+      << " textured, " << out.counts.matched << " matched, " << out.counts.tie_points
+      << " tie points, " << fixed(seconds(), 1) << " s\n";
+  combination.luma.release();
+  out.combination = std::move(combination);
   std::vector<double> shifts;
-  for (const ExtrinsicTiePoint& tie : tie_points) {
+  for (const ExtrinsicTiePoint& tie : out.tie_points) {
     shifts.push_back((tie.hyper_col_row - tie.rgb_col_row).norm() * grid.pixel_m);
   }
-  result.median_shift_m = median(shifts);
+  out.median_shift_m = median(shifts);
+  return out;
+}
+
+ExtrinsicRefinementResult refineExtrinsicInRun(
+    const std::filesystem::path& run, const SE3d& T_C_U_lines, const PushbroomParameters& camera,
+    const ExtrinsicPrior& prior, const UtmProjection& projection,
+    const ExtrinsicRefinementOptions& options, std::ostream& log) {
+  const std::vector<LinePose> line_poses = readLinePoseTable(run / "trajectory" / "uhi_lines.csv");
+  const RunTiePoints found = collectTiePointsInRun(run, projection, options, log);
+  ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      found.tie_points, line_poses, T_C_U_lines, camera, prior, options);
+  result.patches = found.counts.patches;
+  result.matches = found.counts.matched;
+  result.band_weights = found.combination.weights;
+  result.band_offset = found.combination.offset;
+  result.band_fit_r2 = found.combination.fitted ? found.combination.r2 : 0.0;
+  result.median_shift_m = found.median_shift_m;
   log << result.summary();
   return result;
 }

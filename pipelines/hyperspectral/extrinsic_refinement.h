@@ -213,6 +213,19 @@ OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_
                                   const ExtrinsicRefinementOptions& options,
                                   std::vector<ExtrinsicTiePoint>& tie_points);
 
+// Steps 1-3 on a run folder (RUN/hyperspectral/ortho.*, ancillary.*,
+// RUN/map/mesh.ply): the tie points between the two ortho-images, for any
+// solver that uses them (this refinement, the joint problem).
+struct RunTiePoints {
+  std::vector<ExtrinsicTiePoint> tie_points;
+  OrthoMatchCounts counts;
+  BandCombination combination;  // luma released
+  double median_shift_m = 0.0;  // |h - g| over the tie points, on the grid
+};
+RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
+                                   const UtmProjection& projection,
+                                   const ExtrinsicRefinementOptions& options, std::ostream& log);
+
 // The whole refinement on a run folder (see the header comment). T_C_U_lines
 // is the extrinsic RUN/trajectory/uhi_lines.csv was made with (e.g.
 // readRunCalibration(RUN/calibration.yaml).T_C_U after the products stage,

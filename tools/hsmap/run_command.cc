@@ -13,6 +13,8 @@
 #include "core/util/input_error.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/frontend/frontend_outputs.h"
+#include "pipelines/georef/sequential_georef.h"
+#include "tools/hsmap/joint_stage.h"
 #include "tools/hsmap/run_stages.h"
 
 namespace hsmap {
@@ -25,11 +27,15 @@ const std::vector<std::string>& variantStages(const std::string& variant) {
   static const std::vector<std::string> sequential = {"frontend", "georef", "surface", "products"};
   static const std::vector<std::string> planar = {"georef", "surface", "products"};
   static const std::vector<std::string> stacked = {"products"};
-  return variant == "planar" ? planar : variant == "stacked" ? stacked : sequential;
+  static const std::vector<std::string> joint = {"frontend", "georef", "surface", "products", "joint"};
+  return variant == "planar"    ? planar
+         : variant == "stacked" ? stacked
+         : variant == "joint"   ? joint
+                                : sequential;
 }
 
 const std::vector<std::string>& supportedVariants() {
-  static const std::vector<std::string> names = {"sequential", "planar", "stacked"};
+  static const std::vector<std::string> names = {"sequential", "planar", "stacked", "joint"};
   return names;
 }
 
@@ -51,6 +57,7 @@ std::vector<fs::path> stageProducts(const std::string& stage) {
   if (stage == "frontend") return {"frontend"};
   if (stage == "surface") return {results_paths::mesh_ply};
   if (stage == "products") return {"hyperspectral", "map/rgb_ortho.png", "map/rgb_ortho.tif"};
+  if (stage == "joint") return {};  // rewrites the trajectory, calibration and products in place
   return {"trajectory", "calibration.yaml", "map/sparse.ply", "georef"};
 }
 
@@ -111,6 +118,11 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                       "guess)")
       ->default_val(options.extrinsic_rounds)
       ->check(CLI::Range(0, 10));
+  command->add_option("--joint-rounds", options.joint_rounds,
+                      "joint: rounds of cross-modal tie points, joint solve and new cast (fewer "
+                      "when T_C_U and d stop moving)")
+      ->default_val(options.joint_rounds)
+      ->check(CLI::Range(1, 10));
   command->add_option("--seabed-depth", options.seabed_depth_m,
                       "planar: the flat seabed's depth (z in W, metres down; default: estimated "
                       "from RGB frame pairs scaled by the INS)");
@@ -185,6 +197,9 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
       record.options["extrinsic_rounds"] = std::to_string(options.extrinsic_rounds);
     }
   }
+  if (indexOf(stages, "joint") >= first && indexOf(stages, "joint") <= last) {
+    record.options["joint_rounds"] = std::to_string(options.joint_rounds);
+  }
 
   auto finishStage = [&](const std::string& name, double seconds) {
     record.stages.push_back({name, seconds, peakResidentMemoryMb()});
@@ -226,6 +241,20 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
         runSurfaceStage(survey, *georef, options, out);
       } else if (stage == "products") {
         runProductsStage(survey, options, out);
+      } else if (stage == "joint") {
+        if (!frontend) {
+          out << "joint: reading the front-end's files from "
+              << (options.out / frontend_files::folder).string() << "\n";
+          frontend = readFrontendOutputs(options.out);
+        }
+        if (!georef) {
+          // The sequential start again, in memory (its files were replaced
+          // by an earlier joint stage); deterministic, a few seconds.
+          out << "joint: geo-referencing the front-end's map again (in memory, nothing written)\n";
+          georef = runSequentialGeoref(survey, *frontend, GeorefOptions{});
+          georef->variant = "joint";
+        }
+        runJointStage(survey, *frontend, *georef, options, out);
       }
     } catch (const InputError&) {
       throw;

@@ -50,6 +50,9 @@ struct RunOptions {
   // sequential: rounds of the extrinsic refinement from the RGB and
   // hyperspectral ortho-images (0: keep survey.yaml's guess).
   int extrinsic_rounds = 2;
+  // joint: rounds of tie points, joint solve and re-cast (fewer when T_C_U
+  // and d stop moving).
+  int joint_rounds = 3;
   // planar: the flat seabed's z in W (m, down); estimated when absent.
   std::optional<double> seabed_depth_m;
 };

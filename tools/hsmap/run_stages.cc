@@ -147,6 +147,19 @@ void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const Run
       << options.out.string() << "\n";
 }
 
+HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
+                                 const MeshRayCaster& mesh, const UtmProjection& projection,
+                                 const RunOptions& options, bool geotiff, std::ostream& out) {
+  HyperspectralOptions products;
+  products.pixel_m = options.ortho_pixel_m;
+  products.write_geotiff = geotiff;
+  const HyperspectralReport report = writeHyperspectralOrtho(
+      *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
+      projection, options.out / "hyperspectral", products, out);
+  out << report.summary();
+  return report;
+}
+
 GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendResult>& frontend,
                             const RunOptions& options, std::ostream& out) {
   GeorefOptions georef_options;
@@ -166,6 +179,9 @@ GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendRe
                                  });
     if (frames) frames->finish();
   }
+  // The joint variant starts from the sequential result and says so in its
+  // files until the joint stage replaces them.
+  if (options.variant == "joint") result.variant = "joint";
   writeGeorefOutputs(options.out, result);
   out << result.summary() << "\n";
   for (const auto& warning : result.warnings) out << "warning: " << warning << "\n";
@@ -177,21 +193,6 @@ GeorefResult runGeorefStage(const Survey& survey, const std::optional<FrontendRe
 
 
 namespace {
-
-// One cast of every scan line onto the mesh: the hyperspectral products in
-// RUN/hyperspectral (the GeoTIFF only when `geotiff`).
-HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
-                                 const MeshRayCaster& mesh, const UtmProjection& projection,
-                                 const RunOptions& options, bool geotiff, std::ostream& out) {
-  HyperspectralOptions products;
-  products.pixel_m = options.ortho_pixel_m;
-  products.write_geotiff = geotiff;
-  const HyperspectralReport report = writeHyperspectralOrtho(
-      *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
-      projection, options.out / "hyperspectral", products, out);
-  out << report.summary();
-  return report;
-}
 
 SE3d toSe3(const RigidTransformConfig& T) { return SE3d(T.rotation, T.translation_m); }
 
@@ -242,6 +243,26 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
 
 }  // namespace
 
+void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmProjection& projection,
+                           const RunOptions& options, std::ostream& out) {
+  // The RGB ortho-image of the textured mesh on the same grid, to compare
+  // side by side (and, with its 3D points, to match against).
+  if (ply.colors.size() != ply.vertices.size()) {
+    out << "warning: products: " << (options.out / results_paths::mesh_ply).string()
+        << " has no vertex colours: no RGB ortho-image\n";
+    return;
+  }
+  RgbOrthoOptions rgb;
+  rgb.write_geotiff = options.geotiff;
+  const RgbOrthoReport rgb_report = writeRgbOrtho(ply, grid, projection, options.out / "map", rgb);
+  out << rgb_report.summary() << "\n";
+  out << "wrote";
+  for (const fs::path& path : {rgb_report.png, rgb_report.tif}) {
+    if (!path.empty()) out << " " << path.string();
+  }
+  out << "\n";
+}
+
 void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out) {
   if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
   if (options.variant == "stacked") {
@@ -260,11 +281,14 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   const PlyMesh ply = readSurfaceMesh(mesh_ply);
   const UtmProjection projection(survey.origin);
   const bool refine = options.variant == "sequential" && options.extrinsic_rounds > 0;
+  // joint: the joint stage casts again and exports the GeoTIFF once at its end.
+  const bool joint_follows = options.variant == "joint" && options.until != "products";
   // With a refinement to follow, the GeoTIFF is exported once, from the
   // last cast's ENVI ortho-image.
   const MeshRayCaster mesh(ply.vertices, ply.triangles);
   HyperspectralReport report =
-      castProducts(survey, line_poses, mesh, projection, options, options.geotiff && !refine, out);
+      castProducts(survey, line_poses, mesh, projection, options,
+                   options.geotiff && !refine && !joint_follows, out);
   if (refine) {
     refineExtrinsic(survey, line_poses, mesh, projection, options, report, out);
     if (options.geotiff) {
@@ -281,23 +305,7 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   }
   out << "\n";
 
-  // The RGB ortho-image of the textured mesh on the same grid, to compare
-  // side by side (and, with its 3D points, to match against).
-  if (ply.colors.size() != ply.vertices.size()) {
-    out << "warning: products: " << mesh_ply.string()
-        << " has no vertex colours: no RGB ortho-image\n";
-    return;
-  }
-  RgbOrthoOptions rgb;
-  rgb.write_geotiff = options.geotiff;
-  const RgbOrthoReport rgb_report =
-      writeRgbOrtho(ply, report.grid, projection, options.out / "map", rgb);
-  out << rgb_report.summary() << "\n";
-  out << "wrote";
-  for (const fs::path& path : {rgb_report.png, rgb_report.tif}) {
-    if (!path.empty()) out << " " << path.string();
-  }
-  out << "\n";
+  writeRgbOrthoProducts(ply, report.grid, projection, options, out);
 }
 
 }  // namespace hsmap

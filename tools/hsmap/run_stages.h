@@ -12,10 +12,17 @@
 //   products   RUN/trajectory/uhi_lines.csv + RUN/map/mesh.ply + the cube ->
 //              RUN/hyperspectral/ (docs/PRODUCTS.md). It reads its inputs from
 //              the run folder, so `--from products` reruns it alone.
+//   joint      the joint problem (pipelines/joint) in rounds, each re-casting
+//              the products: joint_stage.h (docs/JOINT.md).
 #include <iosfwd>
 #include <optional>
 
+#include "core/geometry/utm_projection.h"
+#include "core/io/ply_io.h"
+#include "core/raycast/mesh_ray_caster.h"
+#include "core/survey/pose_tables.h"
 #include "core/survey/survey.h"
+#include "pipelines/hyperspectral/hyperspectral_ortho.h"
 #include "pipelines/frontend/frontend_runner.h"
 #include "pipelines/georef/georef_result.h"
 #include "tools/hsmap/run_command.h"
@@ -31,5 +38,15 @@ void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const Run
                      std::ostream& out);
 
 void runProductsStage(const Survey& survey, const RunOptions& options, std::ostream& out);
+
+// Shared by the products and joint stages.
+// One cast of every scan line onto the mesh: the hyperspectral products in
+// RUN/hyperspectral (the GeoTIFF only when `geotiff`).
+HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
+                                 const MeshRayCaster& mesh, const UtmProjection& projection,
+                                 const RunOptions& options, bool geotiff, std::ostream& out);
+// RUN/map/rgb_ortho.png (+ .tif): the textured mesh on the ortho grid.
+void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmProjection& projection,
+                           const RunOptions& options, std::ostream& out);
 
 }  // namespace hsmap

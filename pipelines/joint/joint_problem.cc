@@ -1,0 +1,337 @@
+#include "pipelines/joint/joint_problem.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <unordered_map>
+
+#include "core/geometry/pinhole_radtan_camera.h"
+#include "core/graph/factor_graph.h"
+#include "core/graph/key.h"
+#include "core/graph/values.h"
+#include "factors/extrinsic_prior_factor.h"
+#include "factors/pushbroom_line_factor.h"
+#include "factors/spline_ins_attitude_factor.h"
+#include "factors/spline_ins_position_factor.h"
+#include "factors/spline_reprojection_factor.h"
+#include "factors/spline_smoothness_factor.h"
+#include "factors/spline_timing.h"
+#include "factors/time_offset_prior_factor.h"
+#include "solvers/graph_problem.h"
+#include "solvers/marginal_covariance.h"
+#include "solvers/robust_outliers.h"
+
+namespace hsmap {
+
+namespace {
+
+constexpr double kDefaultRangeM = 2.0;
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+void checkInputs(const JointInputs& in) {
+  if (in.map_W == nullptr || in.frontend == nullptr || in.frame_times == nullptr || in.ins == nullptr) {
+    throw std::invalid_argument(
+        "solveJointProblem: the map, the front-end result, the frame times and the INS track are "
+        "required");
+  }
+  if (in.spline.numControlPoints() < 5) {
+    throw std::invalid_argument("solveJointProblem: the spline needs at least 5 control points, got " +
+                                std::to_string(in.spline.numControlPoints()));
+  }
+}
+
+bool inSpline(const SE3Splined& spline, double t) {
+  return t >= spline.validBegin() && t <= spline.validEnd();
+}
+
+// One observation of a frame kept for the problem.
+struct FrameObservationUse {
+  double t;
+  int landmark;
+  Eigen::Vector2d pixel;
+};
+
+}  // namespace
+
+std::string JointResult::summary() const {
+  std::ostringstream out;
+  out << "joint problem: " << spline.numControlPoints() << " spline control points (knots every "
+      << spline.dt() << " s), " << landmarks_W.size() << " landmarks, " << frames << " frames\n"
+      << "  factors: " << reprojection_factors << " reprojections (" << gated_observations
+      << " observations beyond the start gate left out), " << ins_position_factors
+      << " INS positions, " << ins_attitude_factors << " INS attitudes, " << tie_inliers
+      << " tie points (" << tie_outliers << " outliers removed, " << tie_points_outside_spline
+      << " outside the spline), " << smoothness_factors << " smoothness\n";
+  if (!solved) {
+    out << "  not solved\n";
+  } else {
+    out << "  first solve: " << first_solve.toString().substr(0, first_solve.toString().find('\n'))
+        << "\n  final solve: " << last_solve.toString() << "\n";
+    const Eigen::Vector3d rotation_vector =
+        Eigen::AngleAxisd(T_C_U.q).angle() * Eigen::AngleAxisd(T_C_U.q).axis();
+    out << "  T_C_U: rotation " << (rotation_vector * kRadToDeg).transpose() << " deg (rotation vector), "
+        << "translation " << T_C_U.t.transpose() << " m; d = " << time_offset_s * 1000.0 << " ms\n";
+    if (sigma_rotation_deg && sigma_translation_m && time_offset_sigma_s) {
+      out << "  1-sigma: rotation " << sigma_rotation_deg->transpose() << " deg, translation "
+          << (*sigma_translation_m * 1000.0).transpose() << " mm, d " << *time_offset_sigma_s * 1000.0
+          << " ms (covariance " << seconds_covariance << " s)\n";
+    }
+  }
+  for (const std::string& component : weakly_determined) {
+    out << "  weakly determined by this survey: " << component << "\n";
+  }
+  for (const std::string& warning : warnings) out << "  warning: " << warning << "\n";
+  return out.str();
+}
+
+JointResult solveJointProblem(const JointInputs& in, const JointOptions& options) {
+  checkInputs(in);
+  JointResult result;
+  result.spline = in.spline;
+  result.T_C_U = in.T_C_U_start;
+  result.time_offset_s = in.time_offset_start_s;
+  const SE3Splined& spline = in.spline;
+  const SplineTiming timing = SplineTiming::of(spline);
+  const PinholeRadtanCamera rgb(in.rgb_camera);
+
+  // Cross-modal tie points first: without enough of them nothing is solved.
+  std::vector<const JointTiePoint*> ties;
+  result.tie_points_given = int(in.tie_points.size());
+  for (const JointTiePoint& tie : in.tie_points) {
+    const double t = tie.t_recorded + in.time_offset_start_s;
+    if (!inSpline(spline, t) || !tie.p_W.allFinite() || !std::isfinite(tie.sample)) {
+      ++result.tie_points_outside_spline;
+      continue;
+    }
+    ties.push_back(&tie);
+  }
+  if (int(ties.size()) < options.min_tie_points) {
+    result.warnings.push_back("only " + std::to_string(ties.size()) +
+                              " usable cross-modal tie points (need " +
+                              std::to_string(options.min_tie_points) +
+                              "): the joint problem is not solved");
+    return result;
+  }
+
+  // Frame observations within the spline and the start gate.
+  std::vector<FrameObservationUse> observations;
+  std::unordered_map<int, int> seen_by;  // landmark -> frames
+  std::vector<double> posed_frame_times;
+  for (const FrameRecord& frame : in.frontend->frames) {
+    if (!frame.posed || frame.index < 0 || std::size_t(frame.index) >= in.frame_times->size()) continue;
+    const double t = (*in.frame_times)[std::size_t(frame.index)];
+    if (!inSpline(spline, t)) continue;
+    const SE3d T_C_W = spline.pose(t).inverse();
+    int used = 0;
+    for (const FrameObservation& o : in.frontend->observationsOfFrame(frame.index)) {
+      if (o.landmark < 0 || std::size_t(o.landmark) >= in.map_W->landmarks().size()) continue;
+      const Landmark& landmark = in.map_W->landmark(o.landmark);
+      if (!landmark.valid) continue;
+      const Eigen::Vector2d pixel(o.u, o.v);
+      const Eigen::Vector3d p_C = T_C_W * landmark.p_F;
+      if (p_C.z() <= 0.0 || (rgb.project(p_C) - pixel).norm() > options.start_gate_px) {
+        ++result.gated_observations;
+        continue;
+      }
+      observations.push_back({t, o.landmark, pixel});
+      ++seen_by[o.landmark];
+      ++used;
+    }
+    if (used > 0) posed_frame_times.push_back(t);
+  }
+  result.frames = int(posed_frame_times.size());
+
+  Values values;
+  for (int j = 0; j < spline.numControlPoints(); ++j) {
+    const SE3d& T = spline.controlPoints()[std::size_t(j)];
+    values.insertPose(S(std::uint64_t(j)), T.q, T.t);
+  }
+  values.insertPose(E(0), in.T_C_U_start.q, in.T_C_U_start.t);
+  values.insertScalar(D(0), in.time_offset_start_s);
+  for (const auto& [id, count] : seen_by) {
+    if (count < 2) continue;
+    values.insertPoint(L(std::uint64_t(id)), in.map_W->landmark(id).p_F);
+  }
+
+  const NoiseModel pixel_noise = NoiseModel::isotropic(2, options.pixel_sigma_px);
+  const RobustLoss huber = RobustLoss::huber(options.huber_sigmas);
+  const InsNoise& ins_noise = in.ins_noise;
+  const NoiseModel position_noise = NoiseModel::fromSigmas(
+      ins_noise.position_correlation_factor *
+      Eigen::Vector3d(ins_noise.sigma_horizontal_m, ins_noise.sigma_horizontal_m, ins_noise.sigma_depth_m));
+  const NoiseModel attitude_noise = NoiseModel::fromSigmas(
+      in.ins->hasAttitude()
+          ? ins_noise.sigma_attitude_rad
+          : Eigen::Vector3d(ins_noise.assumed_level_sigma_rad, ins_noise.assumed_level_sigma_rad,
+                            ins_noise.assumed_heading_sigma_rad));
+  const double dt2 = spline.dt() * spline.dt();
+  Eigen::Matrix<double, 6, 1> smoothness_sigmas;
+  smoothness_sigmas << Eigen::Vector3d::Constant(options.sigma_linear_acceleration * dt2),
+      Eigen::Vector3d::Constant(options.sigma_angular_acceleration * dt2);
+  const NoiseModel smoothness_noise = NoiseModel::fromSigmas(smoothness_sigmas);
+
+  // Control points whose support holds few posed frames get the smoothness prior.
+  std::vector<int> frames_in_support(std::size_t(spline.numControlPoints()), 0);
+  for (double t : posed_frame_times) {
+    const int i = timing.segmentAt(t).first_control_point;
+    for (int j = i; j < i + 4; ++j) ++frames_in_support[std::size_t(j)];
+  }
+
+  auto buildGraph = [&](const std::vector<bool>& keep_tie, std::vector<std::size_t>* tie_factor_index) {
+    FactorGraph graph;
+    result.reprojection_factors = result.ins_position_factors = result.ins_attitude_factors = 0;
+    result.smoothness_factors = 0;
+    for (const FrameObservationUse& o : observations) {
+      if (!values.contains(L(std::uint64_t(o.landmark)))) continue;
+      graph.emplace<SplineReprojectionFactor>(timing, o.t, L(std::uint64_t(o.landmark)), o.pixel,
+                                              in.rgb_camera, pixel_noise, huber);
+      ++result.reprojection_factors;
+    }
+    const std::vector<InsBodyFix>& fixes = in.ins->fixes();
+    for (std::size_t k = 0; k < fixes.size(); ++k) {
+      if (in.excluded_fixes.count(int(k)) != 0 || !inSpline(spline, fixes[k].t)) continue;
+      graph.emplace<SplineInsPositionFactor>(timing, fixes[k].t, fixes[k].p_W_B, in.T_B_C,
+                                             position_noise);
+      ++result.ins_position_factors;
+      graph.emplace<SplineInsAttitudeFactor>(timing, fixes[k].t, fixes[k].q_W_B, in.T_B_C,
+                                             attitude_noise);
+      ++result.ins_attitude_factors;
+    }
+    for (int j = 1; j + 1 < spline.numControlPoints(); ++j) {
+      if (frames_in_support[std::size_t(j)] >= options.min_frames_in_support) continue;
+      graph.emplace<SplineSmoothnessFactor>(std::uint64_t(j), smoothness_noise);
+      ++result.smoothness_factors;
+    }
+    graph.emplace<ExtrinsicPriorFactor>(
+        E(0), in.T_C_U_prior,
+        ExtrinsicPriorFactor::noiseFromSigmas(in.sigma_rotation_deg, in.sigma_translation_m));
+    graph.emplace<TimeOffsetPriorFactor>(D(0), in.time_offset_prior_s,
+                                         NoiseModel::isotropic(1, in.time_offset_sigma_s));
+    if (tie_factor_index != nullptr) tie_factor_index->assign(ties.size(), std::size_t(-1));
+    for (std::size_t i = 0; i < ties.size(); ++i) {
+      if (!keep_tie[i]) continue;
+      const JointTiePoint& tie = *ties[i];
+      const double range = tie.range_m > 0.0 ? tie.range_m : kDefaultRangeM;
+      const double sigma_across = options.sigma_match_m / range;
+      const Eigen::Vector2d sigmas(in.uhi_camera.f * sigma_across, sigma_across);
+      const std::size_t index = graph.emplace<PushbroomLineFactor>(
+          timing, in.time_offset_start_s, E(0), D(0), tie.p_W,
+          PushbroomObservation{tie.t_recorded, tie.sample}, in.uhi_camera,
+          NoiseModel::fromSigmas(sigmas), RobustLoss::cauchy(options.tie_robust_scale));
+      if (tie_factor_index != nullptr) (*tie_factor_index)[i] = index;
+    }
+    return graph;
+  };
+
+  SolverOptions solver;
+  solver.linear_solver = SolverOptions::LinearSolver::sparse_schur;
+  solver.max_iterations = options.max_iterations;
+  solver.num_threads = options.num_threads;
+  solver.function_tolerance = 1e-7;
+  GraphProblemOptions problem_options;
+  // The tie factors' control-point window covers d within half a knot
+  // interval of the start (PushbroomLineFactor): d is bounded inside it, and
+  // the caller re-windows (builds the problem again) between rounds.
+  const double reach = 0.45 * spline.dt();
+  problem_options.bounds.push_back(
+      {D(0), 0, in.time_offset_start_s - reach, in.time_offset_start_s + reach});
+
+  std::vector<bool> keep(ties.size(), true);
+  {
+    std::vector<std::size_t> tie_factor;
+    const FactorGraph graph = buildGraph(keep, &tie_factor);
+    GraphProblem problem(graph, values, problem_options);
+    result.first_solve = solve(problem, solver);
+    if (!result.first_solve.usable) {
+      result.warnings.push_back("the first solve failed (" + result.first_solve.reason +
+                                "): the sequential result is kept");
+      return result;
+    }
+    const std::vector<std::size_t> beyond = factorsBeyondLossScale(
+        problem, options.num_threads > 0 ? options.num_threads
+                                         : std::max(1, int(std::thread::hardware_concurrency())));
+    std::unordered_map<std::size_t, std::size_t> tie_of_factor;
+    for (std::size_t i = 0; i < tie_factor.size(); ++i) tie_of_factor[tie_factor[i]] = i;
+    for (std::size_t index : beyond) {
+      const auto found = tie_of_factor.find(index);
+      if (found == tie_of_factor.end()) continue;
+      keep[found->second] = false;
+      ++result.tie_outliers;
+    }
+  }
+  result.tie_inliers = int(std::count(keep.begin(), keep.end(), true));
+  if (result.tie_inliers < options.min_tie_points) {
+    result.warnings.push_back("only " + std::to_string(result.tie_inliers) +
+                              " tie points are inliers: the sequential result is kept");
+    return result;
+  }
+
+  const FactorGraph graph = buildGraph(keep, nullptr);
+  GraphProblem problem(graph, values, problem_options);
+  result.last_solve = solve(problem, solver);
+  if (!result.last_solve.usable) {
+    result.warnings.push_back("the final solve failed (" + result.last_solve.reason +
+                              "): the sequential result is kept");
+    return result;
+  }
+  result.solved = true;
+  std::vector<SE3d> control_points;
+  for (int j = 0; j < spline.numControlPoints(); ++j) {
+    control_points.emplace_back(values.poseRotation(S(std::uint64_t(j))).normalized(),
+                                values.poseTranslation(S(std::uint64_t(j))));
+  }
+  result.spline = SE3Splined(spline.t0(), spline.dt(), std::move(control_points));
+  result.T_C_U = SE3d(values.poseRotation(E(0)).normalized(), values.poseTranslation(E(0)));
+  result.time_offset_s = values.scalar(D(0));
+  for (const auto& [id, count] : seen_by) {
+    if (values.contains(L(std::uint64_t(id)))) {
+      result.landmarks_W.emplace_back(id, values.point(L(std::uint64_t(id))));
+    }
+  }
+  if (std::abs(result.time_offset_s - in.time_offset_start_s) > 0.99 * reach) {
+    result.warnings.push_back("d reached the bound of this round's window (" +
+                              std::to_string(reach * 1000.0) +
+                              " ms from its start): another round is needed");
+  }
+
+  // 1-sigma of T_C_U and d with every other variable free.
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    CovarianceOptions covariance_options;
+    covariance_options.num_threads = options.num_threads;
+    // Only T_C_U and d are asked for: eliminate the landmarks by their Schur
+    // complement (the reduced system is the spline, T_C_U and d).
+    covariance_options.algorithm = CovarianceOptions::Algorithm::landmark_schur;
+    const Eigen::MatrixXd covariance = jointMarginalCovariance(problem, {E(0), D(0)}, covariance_options);
+    const Eigen::Matrix3d R_C_U = result.T_C_U.q.toRotationMatrix();
+    const Eigen::Matrix3d translation_C = R_C_U * covariance.topLeftCorner<3, 3>() * R_C_U.transpose();
+    result.sigma_translation_m = translation_C.diagonal().cwiseMax(0.0).cwiseSqrt();
+    result.sigma_rotation_deg = Eigen::Vector3d(
+        covariance.block<3, 3>(3, 3).diagonal().cwiseMax(0.0).cwiseSqrt() * kRadToDeg);
+    result.time_offset_sigma_s = std::sqrt(std::max(0.0, covariance(6, 6)));
+    const char* axes = "xyz";
+    for (int i = 0; i < 3; ++i) {
+      if ((*result.sigma_rotation_deg)[i] > options.weak_fraction_of_prior * in.sigma_rotation_deg) {
+        result.weakly_determined.push_back(std::string("T_C_U rotation about U's ") + axes[i]);
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      if ((*result.sigma_translation_m)[i] > options.weak_fraction_of_prior * in.sigma_translation_m) {
+        result.weakly_determined.push_back(std::string("T_C_U translation along C's ") + axes[i]);
+      }
+    }
+    if (*result.time_offset_sigma_s > options.weak_fraction_of_prior * in.time_offset_sigma_s) {
+      result.weakly_determined.push_back("the time offset d");
+    }
+  } catch (const std::exception& error) {
+    result.warnings.push_back(std::string("no covariance for T_C_U and d: ") + error.what());
+  }
+  result.seconds_covariance =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace hsmap

@@ -1,0 +1,143 @@
+#pragma once
+// The global joint problem (the `joint` variant, docs/JOINT.md): one sparse
+// least-squares problem over
+//   S(j)  the control points of the camera trajectory spline T_W_C(t)
+//         (joint_spline.h),
+//   L(l)  the landmarks of the geo-referenced sparse map (p_W),
+//   E(0)  the RGB-UHI extrinsic T_C_U,
+//   D(0)  the UHI time offset d (true line time = recorded + d),
+// with the factors
+//   - every posed frame's observations of the landmarks
+//     (SplineReprojectionFactor at the frame's time; Huber loss): the
+//     front-end tracked them in every frame, not only in keyframes, so the
+//     spline is determined between keyframes by the video itself;
+//   - every INS fix on the spline at its own time (SplineInsPositionFactor,
+//     SplineInsAttitudeFactor) with the noise of the geo-referencing stage
+//     (survey.yaml's sigmas, positions inflated by the INS's correlation
+//     time); fixes the geo-referencing left out stay out;
+//   - every cross-modal tie point (a UHI pixel of a scan line that saw a
+//     known point of the surface) as a PushbroomLineFactor through the
+//     spline at the line's recorded time + d, T_C_U and d (Cauchy loss);
+//   - the survey's priors on T_C_U and d (ExtrinsicPriorFactor,
+//     TimeOffsetPriorFactor);
+//   - spline smoothness only where the data are thin: at a control point
+//     whose support (the four segments it moves) holds fewer than
+//     `min_frames_in_support` posed frames.
+// Weights: pixels at pixel_sigma_px; tie points at sigma_match_m on the
+// ground over the pixel's range; INS and priors as the survey states them;
+// smoothness as a prior on the vehicle's accelerations (docs/JOINT.md).
+//
+// The solve runs twice: the tie points beyond their loss scale after the
+// first are removed (outliers), then the problem is solved again from the
+// first's estimate. The 1-sigma of T_C_U and d comes from their joint
+// marginal covariance (solvers/marginal_covariance.h) with every other
+// variable free; a component whose 1-sigma is more than
+// `weak_fraction_of_prior` of the prior's is reported as weakly determined
+// by the survey (the data hardly improved on the guess).
+//
+// Fewer than min_tie_points usable tie points (a blank or saturated UHI, no
+// overlap with the RGB footage): nothing is solved, and the result says why
+// (solved == false), so the caller keeps the sequential result.
+
+#include <Eigen/Core>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/geometry/camera_parameters.h"
+#include "core/geometry/se3.h"
+#include "core/geometry/se3_bspline.h"
+#include "pipelines/frontend/frontend_result.h"
+#include "pipelines/frontend/visual_map.h"
+#include "pipelines/georef/georef_bundle_adjuster.h"
+#include "pipelines/georef/ins_body_track.h"
+#include "solvers/graph_solver.h"
+
+namespace hsmap {
+
+struct JointOptions {
+  double pixel_sigma_px = 1.0;
+  double huber_sigmas = 2.0;
+  // An observation farther than this from its landmark's projection at the
+  // start is left out (it was an outlier of the front-end's PnP).
+  double start_gate_px = 4.0;
+  double sigma_match_m = 0.005;  // a tie point's 1-sigma on the ground
+  double tie_robust_scale = 3.0;  // Cauchy, in sigmas
+  int min_tie_points = 20;
+  int min_frames_in_support = 3;
+  double sigma_linear_acceleration = 0.5;   // m/s^2, the smoothness prior
+  double sigma_angular_acceleration = 0.5;  // rad/s^2
+  double weak_fraction_of_prior = 0.5;
+  int max_iterations = 30;
+  int num_threads = 0;  // 0: every hardware thread
+};
+
+// A UHI pixel of scan line `line` (recorded time t_recorded) that saw p_W.
+struct JointTiePoint {
+  long long line = 0;
+  double t_recorded = 0.0;
+  double sample = 0.0;
+  double range_m = 0.0;  // <= 0: 2 m
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+};
+
+struct JointInputs {
+  SE3Splined spline{0.0, 1.0, std::vector<SE3d>(4)};  // initial T_W_C(t)
+  const VisualMap* map_W = nullptr;                    // landmarks in W (valid ones used)
+  const FrontendResult* frontend = nullptr;            // frame observations
+  const std::vector<double>* frame_times = nullptr;    // survey frame index -> time
+  const InsBodyTrack* ins = nullptr;
+  std::set<int> excluded_fixes;  // indices into ins->fixes()
+  SE3d T_B_C;
+  InsNoise ins_noise;
+  std::vector<JointTiePoint> tie_points;
+  PinholeRadtanParameters rgb_camera;
+  PushbroomParameters uhi_camera;
+  SE3d T_C_U_prior;
+  double sigma_rotation_deg = 2.0;
+  double sigma_translation_m = 0.05;
+  double time_offset_prior_s = 0.0;
+  double time_offset_sigma_s = 0.05;
+  SE3d T_C_U_start;  // where the solve starts (e.g. the last round's result)
+  double time_offset_start_s = 0.0;
+};
+
+struct JointResult {
+  bool solved = false;
+  SE3Splined spline{0.0, 1.0, std::vector<SE3d>(4)};
+  std::vector<std::pair<int, Eigen::Vector3d>> landmarks_W;  // (id, p_W) adjusted
+  SE3d T_C_U;
+  double time_offset_s = 0.0;
+  // 1-sigma: rotation about U's x, y, z (deg), translation along C's x, y,
+  // z (m), d (s); nullopt when the covariance could not be computed.
+  std::optional<Eigen::Vector3d> sigma_rotation_deg;
+  std::optional<Eigen::Vector3d> sigma_translation_m;
+  std::optional<double> time_offset_sigma_s;
+  // Components the survey leaves weakly determined, e.g. "T_C_U rotation about U's x".
+  std::vector<std::string> weakly_determined;
+
+  int frames = 0;
+  int reprojection_factors = 0;
+  int gated_observations = 0;  // left out at the start (start_gate_px)
+  int ins_position_factors = 0;
+  int ins_attitude_factors = 0;
+  int smoothness_factors = 0;
+  int tie_points_given = 0;
+  int tie_points_outside_spline = 0;
+  int tie_inliers = 0;
+  int tie_outliers = 0;
+  double rms_tie_u_before_px = 0.0, rms_tie_u_after_px = 0.0;
+  SolveReport first_solve, last_solve;
+  double seconds_covariance = 0.0;
+  std::vector<std::string> warnings;
+
+  // A few lines for the run's log.
+  std::string summary() const;
+};
+
+// Solves the joint problem (see the header comment). Throws
+// std::invalid_argument for missing inputs.
+JointResult solveJointProblem(const JointInputs& inputs, const JointOptions& options = {});
+
+}  // namespace hsmap

@@ -1,0 +1,203 @@
+#include "tools/hsmap/joint_stage.h"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <ostream>
+#include <set>
+
+#include "core/io/geotiff_export.h"
+#include "core/io/ply_io.h"
+#include "core/io/results_folder.h"
+#include "core/raycast/mesh_ray_caster.h"
+#include "core/survey/pose_tables.h"
+#include "core/survey/run_calibration.h"
+#include "core/util/stage_timer.h"
+#include "pipelines/georef/georef_outputs.h"
+#include "pipelines/georef/sequential_georef.h"
+#include "pipelines/hyperspectral/extrinsic_refinement.h"
+#include "pipelines/joint/joint_problem.h"
+#include "pipelines/joint/joint_spline.h"
+#include "tools/hsmap/run_stages.h"
+
+namespace hsmap {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+
+std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& found,
+                                          const std::vector<double>& line_times) {
+  std::vector<JointTiePoint> ties;
+  ties.reserve(found.size());
+  for (const ExtrinsicTiePoint& tie : found) {
+    if (tie.line < 0 || std::size_t(tie.line) >= line_times.size()) continue;
+    ties.push_back({tie.line, line_times[std::size_t(tie.line)], tie.sample, tie.range_m, tie.p_W});
+  }
+  return ties;
+}
+
+// The georef result with every frame and scan line posed from the spline
+// where it is valid (elsewhere the sequential poses stay).
+GeorefResult posedFromSpline(const GeorefResult& sequential, const JointResult& joint,
+                             const std::vector<double>& line_times) {
+  GeorefResult result = sequential;
+  result.variant = "joint";
+  const SE3Splined& spline = joint.spline;
+  auto inSpline = [&](double t) { return t >= spline.validBegin() && t <= spline.validEnd(); };
+  for (GeorefFramePose& frame : result.frames) {
+    if (inSpline(frame.t)) frame.T_W_C = spline.pose(frame.t);
+  }
+  for (GeorefLinePose& line : result.lines) {
+    const double t = line_times[std::size_t(line.line)] + joint.time_offset_s;
+    line.t = t;
+    if (inSpline(t)) {
+      line.T_W_U = spline.pose(t) * joint.T_C_U;
+    } else {
+      // Outside the spline: the sequential camera pose, with the new extrinsic.
+      line.T_W_U = line.T_W_U * sequential.T_C_U.inverse() * joint.T_C_U;
+    }
+  }
+  result.T_C_U = joint.T_C_U;
+  result.time_offset_s = joint.time_offset_s;
+  result.landmarks_W.clear();
+  for (const auto& [id, p_W] : joint.landmarks_W) result.landmarks_W.push_back(p_W);
+  return result;
+}
+
+RunCalibration jointCalibration(const JointResult& joint, int round) {
+  RunCalibration calibration;
+  calibration.variant = "joint";
+  calibration.T_C_U.rotation = joint.T_C_U.q;
+  calibration.T_C_U.translation_m = joint.T_C_U.t;
+  calibration.sigma_rotation_deg = joint.sigma_rotation_deg;
+  calibration.sigma_translation_m = joint.sigma_translation_m;
+  calibration.time_offset_s = joint.time_offset_s;
+  calibration.time_offset_sigma_s = joint.time_offset_sigma_s;
+  calibration.warnings.push_back("T_C_U and time_offset_s estimated by the joint problem (round " +
+                                 std::to_string(round) + ", " + std::to_string(joint.tie_inliers) +
+                                 " cross-modal tie points)");
+  for (const std::string& component : joint.weakly_determined) {
+    calibration.warnings.push_back("observability: " + component +
+                                   " is weakly determined by this survey (its 1-sigma is more "
+                                   "than half the prior's); it stays close to survey.yaml's guess");
+  }
+  for (const std::string& warning : joint.warnings) calibration.warnings.push_back(warning);
+  return calibration;
+}
+
+}  // namespace
+
+void runJointStage(const Survey& survey, const FrontendResult& frontend, const GeorefResult& georef,
+                   const RunOptions& options, std::ostream& out) {
+  if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
+  const UhiConfig& uhi = survey.config.uhi;
+  const SE3d T_C_U_prior(uhi.T_C_U.rotation, uhi.T_C_U.translation_m);
+
+  // The spline through the sequential frame poses.
+  std::vector<TimedPose> frames;
+  for (const GeorefFramePose& frame : georef.frames) {
+    if (frame.source == PoseSource::vision) frames.push_back({frame.t, frame.T_W_C});
+  }
+  if (frames.size() < 4) {
+    throw std::runtime_error("the joint stage needs at least 4 frames posed by vision, got " +
+                             std::to_string(frames.size()));
+  }
+  const KnotSpacingChoice spacing = chooseKnotSpacing(frames);
+  out << "joint: " << spacing.reason << "\n";
+
+  GeorefOptions georef_options;
+  const InsBodyTrack ins(survey, georef_options.heading_window_s);
+  JointInputs inputs;
+  inputs.spline = splineThroughPoses(frames, spacing.dt_s);
+  VisualMap map_W = georef.map_W;
+  inputs.map_W = &map_W;
+  inputs.frontend = &frontend;
+  inputs.frame_times = &survey.rgb.times();
+  inputs.ins = &ins;
+  for (const RejectedFix& rejected : georef.rejected_fixes) inputs.excluded_fixes.insert(rejected.fix);
+  inputs.T_B_C = SE3d(survey.config.ins.T_B_C.rotation, survey.config.ins.T_B_C.translation_m);
+  inputs.ins_noise = surveyInsNoise(survey, ins, georef_options);
+  inputs.rgb_camera = survey.config.rgb.camera;
+  inputs.uhi_camera = uhi.camera;
+  inputs.T_C_U_prior = T_C_U_prior;
+  inputs.sigma_rotation_deg = uhi.sigma_rotation_deg;
+  inputs.sigma_translation_m = uhi.sigma_translation_m;
+  inputs.time_offset_prior_s = uhi.time_offset_s;
+  inputs.time_offset_sigma_s = uhi.time_offset_sigma_s;
+  inputs.T_C_U_start = georef.T_C_U;
+  inputs.time_offset_start_s = georef.time_offset_s;
+
+  const UtmProjection projection(survey.origin);
+  const PlyMesh ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
+  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  const fs::path calibration_yaml = options.out / results_paths::calibration_yaml;
+  HyperspectralReport report;
+  bool cast = false;
+  // A lattice twice as dense as the sequential refinement's: T_C_U's
+  // translation is seen only through the relief's range differences, so the
+  // joint problem needs every confident match it can get.
+  ExtrinsicRefinementOptions tie_options;
+  tie_options.patch_spacing_m = 0.075;
+  for (int round = 1; round <= options.joint_rounds; ++round) {
+    const auto round_start = std::chrono::steady_clock::now();
+    out << "joint: round " << round << " of " << options.joint_rounds << "\n";
+    const RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
+    inputs.tie_points = jointTiePoints(found.tie_points, survey.line_times);
+    const JointResult joint = solveJointProblem(inputs);
+    out << joint.summary();
+    if (!joint.solved) {
+      out << "warning: joint: round " << round << " not solved; "
+          << (round == 1 ? "the sequential result (survey.yaml's T_C_U and d) stays in place"
+                         : "the previous round's result stays in place")
+          << "\n";
+      RunCalibration calibration = readRunCalibration(calibration_yaml);
+      calibration.variant = "joint";
+      for (const std::string& warning : joint.warnings) {
+        calibration.warnings.push_back("joint round " + std::to_string(round) + ": " + warning);
+      }
+      writeRunCalibration(calibration_yaml, calibration);
+      break;
+    }
+    const double rotation_change_deg =
+        inputs.T_C_U_start.q.angularDistance(joint.T_C_U.q) * kRadToDeg;
+    const double translation_change_m = (inputs.T_C_U_start.t - joint.T_C_U.t).norm();
+    const double time_change_s = std::abs(inputs.time_offset_start_s - joint.time_offset_s);
+    out << "joint: round " << round << ": " << found.tie_points.size() << " tie points, "
+        << joint.tie_inliers << " inliers; T_C_U moved " << rotation_change_deg << " deg and "
+        << translation_change_m * 1000.0 << " mm, d moved " << time_change_s * 1000.0 << " ms\n";
+
+    const GeorefResult posed = posedFromSpline(georef, joint, survey.line_times);
+    writeGeorefOutputs(options.out, posed);
+    writeRunCalibration(calibration_yaml, jointCalibration(joint, round));
+    std::vector<LinePose> line_poses;
+    for (const GeorefLinePose& line : posed.lines) line_poses.push_back({line.line, line.t, line.T_W_U});
+    out << "joint: wrote the trajectory and calibration.yaml; casting the scan lines again\n";
+    report = castProducts(survey, line_poses, mesh, projection, options, false, out);
+    cast = true;
+
+    inputs.spline = joint.spline;
+    for (const auto& [id, p_W] : joint.landmarks_W) map_W.landmark(id).p_F = p_W;
+    inputs.T_C_U_start = joint.T_C_U;
+    inputs.time_offset_start_s = joint.time_offset_s;
+    out << "joint: round " << round << " took " << secondsSince(round_start) << " s\n";
+    const bool bound_reached = std::any_of(joint.warnings.begin(), joint.warnings.end(),
+                                           [](const std::string& w) { return w.find("bound") != std::string::npos; });
+    if (!bound_reached && rotation_change_deg < 0.005 && translation_change_m < 0.0005 &&
+        time_change_s < 0.0002) {
+      out << "joint: T_C_U and d stopped moving after round " << round << "\n";
+      break;
+    }
+  }
+  if (options.geotiff) {
+    const auto start = std::chrono::steady_clock::now();
+    exportEnviToCog(options.out / "hyperspectral/ortho.hdr", options.out / "hyperspectral/ortho.tif",
+                    HyperspectralOptions{}.geotiff);
+    out << "joint: GeoTIFF written in " << secondsSince(start) << " s\n";
+  }
+  if (cast) writeRgbOrthoProducts(ply, report.grid, projection, options, out);
+}
+
+}  // namespace hsmap
