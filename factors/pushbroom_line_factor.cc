@@ -195,6 +195,11 @@ PushbroomLineFactor::PushbroomLineFactor(const SplineTiming& spline, int first_c
   requireFinite(kName, "observed pixel u", observation_.u);
 }
 
+int PushbroomLineFactor::windowStartFor(const SplineTiming& spline, double t_recorded,
+                                        double time_offset_guess_s) {
+  return windowStart(spline, t_recorded, time_offset_guess_s);
+}
+
 std::pair<double, double> PushbroomLineFactor::coveredTimeRange() const {
   return {spline_.t0 + first_control_point_ * spline_.dt,
           spline_.t0 + (first_control_point_ + 2) * spline_.dt};

@@ -152,6 +152,11 @@ class PushbroomLineFactor : public CeresFactor {
                       const PushbroomObservation& observation, const PushbroomParameters& camera,
                       NoiseModel noise, RobustLoss robust_loss = RobustLoss::none());
 
+  // j of the window S(j) .. S(j+4) a factor built with these arguments uses
+  // (the same checks and errors as the constructors).
+  static int windowStartFor(const SplineTiming& spline, double t_recorded,
+                            double time_offset_guess_s);
+
   std::string name() const override { return "PushbroomLineFactor"; }
   // Analytic Jacobians (see the header comment).
   std::unique_ptr<ceres::CostFunction> createCostFunction() const override;

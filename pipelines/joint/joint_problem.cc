@@ -13,6 +13,7 @@
 #include "core/graph/key.h"
 #include "core/graph/values.h"
 #include "factors/extrinsic_prior_factor.h"
+#include "factors/pushbroom_camera_point_factor.h"
 #include "factors/pushbroom_line_factor.h"
 #include "factors/spline_ins_attitude_factor.h"
 #include "factors/spline_ins_position_factor.h"
@@ -102,7 +103,10 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   result.tie_points_given = int(in.tie_points.size());
   for (const JointTiePoint& tie : in.tie_points) {
     const double t = tie.t_recorded + in.time_offset_start_s;
-    if (!inSpline(spline, t) || !tie.p_W.allFinite() || !std::isfinite(tie.sample)) {
+    const bool in_surface_trajectory =
+        in.surface_trajectory == nullptr || inSpline(*in.surface_trajectory, t);
+    if (!inSpline(spline, t) || !in_surface_trajectory || !tie.p_W.allFinite() ||
+        !std::isfinite(tie.sample)) {
       ++result.tie_points_outside_spline;
       continue;
     }
@@ -217,10 +221,20 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       const double range = tie.range_m > 0.0 ? tie.range_m : kDefaultRangeM;
       const double sigma_across = options.sigma_match_m / range;
       const Eigen::Vector2d sigmas(in.uhi_camera.f * sigma_across, sigma_across);
-      const std::size_t index = graph.emplace<PushbroomLineFactor>(
-          timing, in.time_offset_start_s, E(0), D(0), tie.p_W,
-          PushbroomObservation{tie.t_recorded, tie.sample}, in.uhi_camera,
-          NoiseModel::fromSigmas(sigmas), RobustLoss::cauchy(options.tie_robust_scale));
+      const PushbroomObservation observation{tie.t_recorded, tie.sample};
+      const NoiseModel noise = NoiseModel::fromSigmas(sigmas);
+      const RobustLoss loss = RobustLoss::cauchy(options.tie_robust_scale);
+      std::size_t index = 0;
+      if (in.surface_trajectory != nullptr) {
+        const double t_reference = tie.t_recorded + in.time_offset_start_s;
+        const Eigen::Vector3d p_C = in.surface_trajectory->pose(t_reference).inverse() * tie.p_W;
+        index = graph.emplace<PushbroomCameraPointFactor>(timing, in.time_offset_start_s, E(0), D(0),
+                                                          t_reference, p_C, observation,
+                                                          in.uhi_camera, noise, loss);
+      } else {
+        index = graph.emplace<PushbroomLineFactor>(timing, in.time_offset_start_s, E(0), D(0),
+                                                   tie.p_W, observation, in.uhi_camera, noise, loss);
+      }
       if (tie_factor_index != nullptr) (*tie_factor_index)[i] = index;
     }
     return graph;

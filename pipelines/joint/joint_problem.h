@@ -16,8 +16,10 @@
 //     (survey.yaml's sigmas, positions inflated by the INS's correlation
 //     time); fixes the geo-referencing left out stay out;
 //   - every cross-modal tie point (a UHI pixel of a scan line that saw a
-//     known point of the surface) as a PushbroomLineFactor through the
-//     spline at the line's recorded time + d, T_C_U and d (Cauchy loss);
+//     known point of the surface) through the spline at the line's recorded
+//     time + d, T_C_U and d (Cauchy loss): a PushbroomCameraPointFactor, the
+//     point carried by the trajectory from where the RGB camera was at the
+//     line's time (see JointInputs::surface_trajectory);
 //   - the survey's priors on T_C_U and d (ExtrinsicPriorFactor,
 //     TimeOffsetPriorFactor);
 //   - spline smoothness only where the data are thin: at a control point
@@ -92,6 +94,12 @@ struct JointInputs {
   SE3d T_B_C;
   InsNoise ins_noise;
   std::vector<JointTiePoint> tie_points;
+  // The trajectory the tie points' surface was made with. When given, each
+  // tie point is carried by the spline (PushbroomCameraPointFactor: p_C at
+  // its line's time), so a shift of the whole trajectory during the solve
+  // (its absolute position is the INS's, to decimetres) cannot pull T_C_U;
+  // null: the points are fixed in W (PushbroomLineFactor).
+  const SE3Splined* surface_trajectory = nullptr;
   PinholeRadtanParameters rgb_camera;
   PushbroomParameters uhi_camera;
   SE3d T_C_U_prior;

@@ -1,5 +1,6 @@
 #include "tools/hsmap/joint_stage.h"
 
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -67,6 +68,49 @@ GeorefResult posedFromSpline(const GeorefResult& sequential, const JointResult& 
   return result;
 }
 
+// The rigid motion G that brings the solved trajectory onto the one the
+// surface was made with (least squares over the frames' positions,
+// Eigen::umeyama without scale). The solve may settle the whole trajectory
+// a few centimetres away (its absolute position is the INS's, to
+// decimetres); T_C_U and d do not depend on that, but the scan lines must be
+// cast onto the mesh in the mesh's own frame.
+SE3d ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface,
+                      const std::vector<TimedPose>& frames) {
+  Eigen::Matrix3Xd from(3, Eigen::Index(frames.size())), to(3, Eigen::Index(frames.size()));
+  Eigen::Index n = 0;
+  for (const TimedPose& frame : frames) {
+    if (frame.t < solved.validBegin() || frame.t > solved.validEnd()) continue;
+    from.col(n) = solved.pose(frame.t).t;
+    to.col(n) = surface.pose(frame.t).t;
+    ++n;
+  }
+  if (n < 3) return SE3d();
+  const Eigen::Matrix4d G = Eigen::umeyama(from.leftCols(n), to.leftCols(n), false);
+  return SE3d(Eigen::Quaterniond(Eigen::Matrix3d(G.topLeftCorner<3, 3>())).normalized(),
+              G.topRightCorner<3, 1>());
+}
+
+JointResult inSurfaceFrame(JointResult joint, const SE3d& G) {
+  std::vector<SE3d> control_points;
+  for (const SE3d& T : joint.spline.controlPoints()) control_points.push_back(G * T);
+  joint.spline = SE3Splined(joint.spline.t0(), joint.spline.dt(), std::move(control_points));
+  for (auto& [id, p_W] : joint.landmarks_W) p_W = G * p_W;
+  return joint;
+}
+
+// The sparse map of the sequential result with the joint keyframe poses and
+// landmarks, for the surface stage.
+GeorefResult withJointMap(GeorefResult posed, const JointResult& joint) {
+  const SE3Splined& spline = joint.spline;
+  for (const Keyframe& keyframe : posed.map_W.keyframes()) {
+    if (keyframe.t >= spline.validBegin() && keyframe.t <= spline.validEnd()) {
+      posed.map_W.keyframe(keyframe.id).T_F_C = spline.pose(keyframe.t);
+    }
+  }
+  for (const auto& [id, p_W] : joint.landmarks_W) posed.map_W.landmark(id).p_F = p_W;
+  return posed;
+}
+
 RunCalibration jointCalibration(const JointResult& joint, int round) {
   RunCalibration calibration;
   calibration.variant = "joint";
@@ -111,7 +155,11 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
   GeorefOptions georef_options;
   const InsBodyTrack ins(survey, georef_options.heading_window_s);
   JointInputs inputs;
-  inputs.spline = splineThroughPoses(frames, spacing.dt_s);
+  // The mesh was made from the sequential trajectory: its spline is the
+  // tie points' reference (JointInputs::surface_trajectory).
+  SE3Splined surface_spline = splineThroughPoses(frames, spacing.dt_s);
+  inputs.spline = surface_spline;
+  inputs.surface_trajectory = &surface_spline;
   VisualMap map_W = georef.map_W;
   inputs.map_W = &map_W;
   inputs.frontend = &frontend;
@@ -131,8 +179,7 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
   inputs.time_offset_start_s = georef.time_offset_s;
 
   const UtmProjection projection(survey.origin);
-  const PlyMesh ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
-  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  PlyMesh ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
   const fs::path calibration_yaml = options.out / results_paths::calibration_yaml;
   HyperspectralReport report;
   bool cast = false;
@@ -146,8 +193,15 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     out << "joint: round " << round << " of " << options.joint_rounds << "\n";
     const RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
     inputs.tie_points = jointTiePoints(found.tie_points, survey.line_times);
-    const JointResult joint = solveJointProblem(inputs);
-    out << joint.summary();
+    const JointResult solved = solveJointProblem(inputs);
+    out << solved.summary();
+    const SE3d G = ontoSurfaceFrame(solved.spline, surface_spline, frames);
+    if (solved.solved) {
+      out << "joint: the solved trajectory moved " << G.t.norm() * 1000.0 << " mm and "
+          << G.q.angularDistance(Eigen::Quaterniond::Identity()) * kRadToDeg
+          << " deg as a whole from the surface's frame; brought back onto it\n";
+    }
+    const JointResult joint = solved.solved ? inSurfaceFrame(solved, G) : solved;
     if (!joint.solved) {
       out << "warning: joint: round " << round << " not solved; "
           << (round == 1 ? "the sequential result (survey.yaml's T_C_U and d) stays in place"
@@ -174,7 +228,15 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     writeRunCalibration(calibration_yaml, jointCalibration(joint, round));
     std::vector<LinePose> line_poses;
     for (const GeorefLinePose& line : posed.lines) line_poses.push_back({line.line, line.t, line.T_W_U});
-    out << "joint: wrote the trajectory and calibration.yaml; casting the scan lines again\n";
+    // The surface again from the joint trajectory, so the lines are cast
+    // onto a mesh made with the same poses (and the next round's tie points
+    // refer to it).
+    out << "joint: wrote the trajectory and calibration.yaml; rebuilding the surface\n";
+    runSurfaceStage(survey, withJointMap(posed, joint), options, out);
+    ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
+    surface_spline = joint.spline;
+    out << "joint: casting the scan lines again\n";
+    const MeshRayCaster mesh(ply.vertices, ply.triangles);
     report = castProducts(survey, line_poses, mesh, projection, options, false, out);
     cast = true;
 
