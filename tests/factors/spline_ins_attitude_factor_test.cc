@@ -10,6 +10,7 @@
 
 #include "factors/ins_attitude_factor.h"
 #include "tests/factors/factor_test_support.h"
+#include "tests/factors/spline_test_support.h"
 
 namespace hsmap {
 namespace {
@@ -29,25 +30,12 @@ SE3d bodyToCamera() {
   return SE3d(expSO3(Eigen::Vector3d(0.1, -0.2, 1.4)), Eigen::Vector3d(0.5, -0.1, 0.3));
 }
 
-// A turning, wobbling trajectory with per-control-point perturbations.
 SE3Splined wobblyTrajectory(std::mt19937& rng, int num_control_points) {
-  std::vector<SE3d> control_points;
-  for (int k = 0; k < num_control_points; ++k) {
-    const double t = kT0 + (k - 1) * kDt;
-    const SE3d nominal(expSO3(Eigen::Vector3d(0.2 * std::sin(3.0 * t), 0.1 * std::cos(2.0 * t),
-                                              0.3 * t)),
-                       Eigen::Vector3d(1.5 * t, 0.4 * std::sin(t), 10.0 + 0.2 * t));
-    control_points.push_back(nominal * test::randomPose(rng, 0.05, 0.03));
-  }
-  return SE3Splined(kT0, kDt, control_points);
+  return test::wobblyTrajectory(rng, kT0, kDt, num_control_points);
 }
 
 std::vector<test::ParameterBlock> stateOf(const SE3Splined& spline, const SplineSegment& segment) {
-  std::vector<test::ParameterBlock> blocks;
-  for (int k = 0; k < 4; ++k) {
-    blocks.push_back(poseBlock(spline.controlPoints()[segment.first_control_point + k]));
-  }
-  return blocks;
+  return test::segmentState(spline, segment);
 }
 
 TEST(SplineInsAttitudeFactor, ConnectsTheFourActiveControlPoints) {

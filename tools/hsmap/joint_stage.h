@@ -10,7 +10,8 @@
 //   3. every frame and scan line posed from the spline
 //      (T_W_U = T_W_C(t_rec + d) T_C_U), written with calibration.yaml (T_C_U
 //      and d with their 1-sigma, the observability warnings);
-//   4. the products cast again;
+//   4. the surface rebuilt from the joint keyframe poses and landmarks, and
+//      the products cast onto it again;
 // until T_C_U and d stop moving or `joint_rounds` are done. Each round is
 // reported (tie points, inliers, parameter change). A survey without enough
 // confident tie points ends the stage with a warning and the sequential
