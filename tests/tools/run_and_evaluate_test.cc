@@ -65,7 +65,8 @@ class RunAndEvaluate : public ::testing::Test {
   }
 
   // Every file of the contract these stages write, read back strictly.
-  void expectContractFiles(const fs::path& out, const std::string& variant) {
+  void expectContractFiles(const fs::path& out, const std::string& variant,
+                           const std::string& last_stage = "products") {
     const Survey survey = loadSurvey(tinySurvey());
     const auto frames = readTimedPoseTable(out / "trajectory/frames.csv");
     ASSERT_EQ(frames.size(), survey.rgb.times().size());
@@ -87,7 +88,7 @@ class RunAndEvaluate : public ::testing::Test {
     EXPECT_EQ(record.variant, variant);
     EXPECT_EQ(fs::canonical(record.survey), fs::canonical(tinySurvey()));
     ASSERT_FALSE(record.stages.empty());
-    EXPECT_EQ(record.stages.back().name, "products");
+    EXPECT_EQ(record.stages.back().name, last_stage);
     // The products of every variant (docs/PRODUCTS.md).
     for (const char* product : {"hyperspectral/ortho.hdr", "hyperspectral/ortho.raw", "hyperspectral/ortho.tif",
                                 "hyperspectral/ortho_rgb.png", "hyperspectral/ancillary.hdr",
@@ -225,6 +226,31 @@ TEST_F(RunAndEvaluate, ATrackingLossIsBridgedByTheInsAndSaysSo) {
                                                  quoted((survey / "truth").string()));
   ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err;
   EXPECT_LT(metric(readText(out / "metrics.json"), "rgb_ate_m"), 0.2);
+}
+
+TEST_F(RunAndEvaluate, JointWithTooFewTiePointsKeepsTheSequentialResultAndSaysWhy) {
+  // tiny's UHI has 240 samples over a few seconds: far fewer than the 20
+  // confident tie points the joint problem needs.
+  const fs::path joint = temp_ / "joint";
+  const RunResult result = run("joint", joint);
+  ASSERT_EQ(result.exit_status, 0) << result.err << result.out;
+  EXPECT_NE(result.out.find("warning: joint: round 1 not solved; the sequential result"), std::string::npos)
+      << result.out;
+  expectContractFiles(joint, "joint", "joint");
+  const RunCalibration calibration = readRunCalibration(joint / "calibration.yaml");
+  ASSERT_EQ(calibration.warnings.size(), 2u);
+  EXPECT_EQ(calibration.warnings[0],
+            "T_C_U and time_offset_s are survey.yaml's guesses: the joint problem could not be solved");
+  EXPECT_NE(calibration.warnings[1].find("cross-modal tie points (need 20)"), std::string::npos)
+      << calibration.warnings[1];
+  EXPECT_EQ(readRunRecord(joint / "run.yaml").options.at("joint_rounds"), "3");
+
+  const RunResult evaluate = runHsmap(
+      temp_, "evaluate " + quoted(joint.string()) + " --truth " + quoted((tinySurvey() / "truth").string()));
+  ASSERT_EQ(evaluate.exit_status, 0) << evaluate.err << evaluate.out;
+  const std::string json = readText(joint / "metrics.json");
+  EXPECT_GT(metric(json, "extrinsic_rotation_error_deg"), 0.5);  // the survey's 2 deg guess, kept
+  EXPECT_GT(metric(json, "time_offset_error_s"), 0.005);         // and its 15 ms off d
 }
 
 TEST_F(RunAndEvaluate, StackedWritesTheLinesSideBySideAndScoresNothing) {

@@ -209,6 +209,10 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
           << "\n";
       RunCalibration calibration = readRunCalibration(calibration_yaml);
       calibration.variant = "joint";
+      if (round == 1) {
+        calibration.warnings = {
+            "T_C_U and time_offset_s are survey.yaml's guesses: the joint problem could not be solved"};
+      }
       for (const std::string& warning : joint.warnings) {
         calibration.warnings.push_back("joint round " + std::to_string(round) + ": " + warning);
       }
