@@ -15,15 +15,6 @@ namespace {
 constexpr const char* kName = "PushbroomCameraPointFactor";
 constexpr int P = SE3d::kNumParameters;
 
-std::vector<Key> windowKeys(int first, Key extrinsic_T_C_U, Key time_offset_d) {
-  std::vector<Key> keys;
-  for (int k = 0; k < PushbroomLineFactor::kNumControlPoints; ++k) {
-    keys.push_back(S(static_cast<std::uint64_t>(first + k)));
-  }
-  keys.push_back(extrinsic_T_C_U);
-  keys.push_back(time_offset_d);
-  return keys;
-}
 
 }  // namespace
 
@@ -31,7 +22,7 @@ PushbroomCameraPointFactor::PushbroomCameraPointFactor(
     const SplineTiming& spline, double time_offset_guess_s, Key extrinsic_T_C_U, Key time_offset_d,
     double t_reference, const Eigen::Vector3d& p_C, const PushbroomObservation& observation,
     const PushbroomParameters& camera, NoiseModel noise, RobustLoss robust_loss)
-    : CeresFactor(windowKeys(PushbroomLineFactor::windowStartFor(spline, observation.t_recorded,
+    : CeresFactor(PushbroomLineFactor::windowKeysFor(PushbroomLineFactor::windowStartFor(spline, observation.t_recorded,
                                                                  time_offset_guess_s),
                              extrinsic_T_C_U, time_offset_d),
                   std::move(noise), robust_loss),

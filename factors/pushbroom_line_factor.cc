@@ -200,6 +200,10 @@ int PushbroomLineFactor::windowStartFor(const SplineTiming& spline, double t_rec
   return windowStart(spline, t_recorded, time_offset_guess_s);
 }
 
+std::vector<Key> PushbroomLineFactor::windowKeysFor(int first, Key extrinsic_T_C_U, Key time_offset_d) {
+  return windowKeys(first, extrinsic_T_C_U, time_offset_d);
+}
+
 std::pair<double, double> PushbroomLineFactor::coveredTimeRange() const {
   return {spline_.t0 + first_control_point_ * spline_.dt,
           spline_.t0 + (first_control_point_ + 2) * spline_.dt};

@@ -156,6 +156,8 @@ class PushbroomLineFactor : public CeresFactor {
   // (the same checks and errors as the constructors).
   static int windowStartFor(const SplineTiming& spline, double t_recorded,
                             double time_offset_guess_s);
+  // The keys S(first) .. S(first+4), extrinsic_T_C_U, time_offset_d.
+  static std::vector<Key> windowKeysFor(int first, Key extrinsic_T_C_U, Key time_offset_d);
 
   std::string name() const override { return "PushbroomLineFactor"; }
   // Analytic Jacobians (see the header comment).
