@@ -298,6 +298,25 @@ PatchResult measurePatch(const cv::Mat& truth_mean, const cv::Mat& produced_mean
   return result;
 }
 
+// The first match found again on the window shifted diagonally by a quarter
+// patch (ortho_metrics.h, step 3): the first direction inside the raster
+// with data decides.
+bool confirmMatch(const PatchResult& first, const cv::Mat& truth_mean, const cv::Mat& produced_mean,
+                  const ProducedLookup& lookup, const cv::Mat& hann, int r0, int c0, int side,
+                  const Eigen::Vector2d& start_px, double pixel_m, double tolerance_px,
+                  const OrthoMetricsOptions& options) {
+  const int quarter = std::max(1, side / 4);
+  for (const auto& [dr, dc] : {std::pair{1, 1}, std::pair{1, -1}, std::pair{-1, 1}, std::pair{-1, -1}}) {
+    const int r = r0 + dr * quarter, c = c0 + dc * quarter;
+    if (r < 0 || c < 0 || r + side > truth_mean.rows || c + side > truth_mean.cols) continue;
+    const PatchResult second =
+        measurePatch(truth_mean, produced_mean, lookup, hann, r, c, side, start_px, pixel_m, options);
+    if (!second.has_data) continue;
+    return second.matched && (second.displacement_px - first.displacement_px).norm() <= tolerance_px;
+  }
+  return false;
+}
+
 // Coarse whole-image shift (d_row, d_col) in truth pixels, when confident.
 std::optional<Eigen::Vector2d> coarseShift(const cv::Mat& truth_mean, const cv::Mat& produced_on_truth,
                                            const OrthoMetricsOptions& options) {
@@ -440,6 +459,8 @@ void OrthoMetricsOptions::validate() const {
   require(min_valid_fraction > 0.0 && min_valid_fraction <= 1.0, "min_valid_fraction must be in (0, 1]");
   require(min_response >= 0.0 && min_response <= 1.0, "min_response must be in [0, 1]");
   require(max_refinements >= 0, "max_refinements must be >= 0");
+  require(std::isfinite(confirmation_tolerance_m) && confirmation_tolerance_m > 0.0,
+          "confirmation_tolerance_m must be finite and > 0");
   require(std::isfinite(refinement_tolerance_px) && refinement_tolerance_px > 0.0,
           "refinement_tolerance_px must be finite and > 0");
   require(coarse_max_side >= 8, "coarse_max_side must be >= 8");
@@ -459,6 +480,7 @@ std::string OrthoMetrics::summary() const {
   std::ostringstream out;
   out << "ortho: " << patches << " patches of " << patch_pixels << " px, " << patches_with_data
       << " with data, " << patches_matched << " matched";
+  if (patches_unconfirmed > 0) out << " (" << patches_unconfirmed << " more not confirmed)";
   if (coarse_shift_NE) {
     out << "; coarse shift (north, east) = (" << coarse_shift_NE->x() << ", " << coarse_shift_NE->y()
         << ") m";
@@ -546,6 +568,28 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
       }
     });
   }
+  if (options.confirm_matches && metrics.patches > 0) {
+    const double tolerance_px = std::max(2.0, options.confirmation_tolerance_m / truth.px);
+    cv::Mat hann;
+    cv::createHanningWindow(hann, cv::Size(side, side), CV_64F);
+    std::vector<char> confirmed(results.size(), 1);
+    tbb::parallel_for(tbb::blocked_range<int>(0, metrics.patches), [&](const tbb::blocked_range<int>& range) {
+      for (int k = range.begin(); k != range.end(); ++k) {
+        const PatchResult& first = results[static_cast<std::size_t>(k)];
+        if (!first.matched) continue;
+        const int r0 = top + (k / patch_cols) * side, c0 = left + (k % patch_cols) * side;
+        confirmed[static_cast<std::size_t>(k)] =
+            confirmMatch(first, truth_mean, produced_mean, as_placed, hann, r0, c0, side, start_px,
+                         truth.px, tolerance_px, options);
+      }
+    });
+    for (std::size_t k = 0; k < results.size(); ++k) {
+      if (results[k].matched && !confirmed[k]) {
+        results[k].matched = false;
+        ++metrics.patches_unconfirmed;
+      }
+    }
+  }
   std::vector<Eigen::Vector2d> centres_EN, moved_EN;
   for (int k = 0; k < metrics.patches; ++k) {
     const PatchResult& result = results[static_cast<std::size_t>(k)];
@@ -576,7 +620,8 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
   } else if (metrics.patches_matched < needed) {
     std::ostringstream why;
     why << "too few patches match: " << metrics.patches_matched << " of " << metrics.patches_with_data
-        << " with data (phase-correlation response >= " << options.min_response << "), need "
+        << " with data (phase-correlation response >= " << options.min_response
+        << (options.confirm_matches ? ", confirmed on a shifted window" : "") << "), need "
         << static_cast<int>(std::ceil(needed)) << " (" << 100.0 * options.min_matched_fraction
         << " % of those with data and at least "
         << options.min_matched_patches << ")";

@@ -296,6 +296,8 @@ TEST(OrthoMetrics, LocalWarpLeavesItsResidual) {
                        [&](const Eigen::Vector2d& y) { return Eigen::Vector2d(y - a_NE * bump(y)); }));
   const OrthoMetrics metrics = measure(rasters);
   ASSERT_TRUE(metrics.ortho_registration_rmse_m.value) << metrics.ortho_registration_rmse_m.reason;
+  // A displacement smoother than a patch is found again on the shifted windows.
+  EXPECT_EQ(metrics.patches_unconfirmed, 0);
 
   // The expected residual: the displacement field at the matched centres
   // (x + a bump(x), to first order), less its own best similarity.
@@ -426,6 +428,40 @@ TEST(OrthoMetrics, UnrelatedProductCannotBeRegistered) {
   EXPECT_EQ(metrics.patches_with_data, metrics.patches);
   EXPECT_LT(metrics.patches_matched, 0.3 * metrics.patches);
   EXPECT_FALSE(metrics.ortho_mean_shift_m.value);
+}
+
+// Content displaced over less than a patch, at a patch's centre (a square
+// of 0.2 m moved 6 cm east; the rest exact): the Hanning window weighs the
+// centre most, so that patch alone "matches" at the square's displacement,
+// which is not a displacement of the map at the scale the metric measures.
+// On the window shifted by a quarter patch the square is off-centre and the
+// match lands elsewhere: not confirmed. Without the confirmation, this one
+// patch would dominate the registration error.
+TEST(OrthoMetrics, ADisplacementSmallerThanAPatchIsNotConfirmed) {
+  Rasters rasters;
+  writeTruth(rasters.truth, always(mixedSeabed));
+  // Patch (row 1, column 2) of the 4 x 6 tiling spans rows 60-119 and columns
+  // 140-199 of the truth: centre north 0.75 m, east 0.85 m.
+  const Eigen::Vector2d centre_NE(0.75, 0.85), shift_NE(0.0, 0.06);
+  writeProduced(rasters.produced, warped(always(mixedSeabed), [&](const Eigen::Vector2d& y) {
+                  const bool inside = (y - centre_NE).cwiseAbs().maxCoeff() < 0.1;
+                  return Eigen::Vector2d(inside ? y - shift_NE : y);
+                }));
+  OrthoMetricsOptions unconfirmed;
+  unconfirmed.confirm_matches = false;
+  const OrthoMetrics without = measureOrtho(rasters.produced, rasters.truth, surveyOrigin(), unconfirmed);
+  std::cout << without.summary();
+  ASSERT_TRUE(without.ortho_registration_rmse_m.value);
+  EXPECT_GT(*without.ortho_registration_rmse_m.value, 0.005);
+
+  const OrthoMetrics with = measure(rasters);
+  ASSERT_TRUE(with.ortho_registration_rmse_m.value);
+  EXPECT_EQ(with.patches_unconfirmed, 1);
+  EXPECT_EQ(with.patches_matched, without.patches_matched - 1);
+  EXPECT_LT(*with.ortho_registration_rmse_m.value, kRmseFloor);
+  for (const OrthoPatchMatch& match : with.matches) {
+    EXPECT_GT((match.centre_NE - centre_NE).norm(), 0.1) << "the displaced patch was kept";
+  }
 }
 
 TEST(OrthoMetrics, ProducedRasterInAnotherZoneIsAnInputError) {
