@@ -224,6 +224,12 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
                                                 quoted(run_folder.string()) + " --surface poisson");
   EXPECT_EQ(surface.exit_status, 1);
   EXPECT_EQ(surface.err, "error: unknown surface 'poisson' for --surface; expected one of dense, sparse\n");
+  const RunResult cell = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
+                                             quoted(run_folder.string()) + " --point-cell 0");
+  EXPECT_EQ(cell.exit_status, 1);
+  EXPECT_EQ(cell.err,
+            "error: --point-cell 0: expected a cell size between 0.001 and 10 m (default 0.02; --no-points "
+            "skips the point cloud)\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

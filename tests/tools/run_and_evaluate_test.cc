@@ -92,7 +92,7 @@ class RunAndEvaluate : public ::testing::Test {
     // The products of every variant (docs/PRODUCTS.md).
     for (const char* product : {"hyperspectral/ortho.hdr", "hyperspectral/ortho.raw", "hyperspectral/ortho.tif",
                                 "hyperspectral/ortho_rgb.png", "hyperspectral/ancillary.hdr",
-                                "map/rgb_ortho.png", "map/rgb_ortho.tif"}) {
+                                "hyperspectral/points.ply", "map/rgb_ortho.png", "map/rgb_ortho.tif"}) {
       EXPECT_TRUE(fs::is_regular_file(out / product)) << product;
     }
     EXPECT_FALSE(fs::exists(out / "hyperspectral.partial"));

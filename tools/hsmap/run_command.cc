@@ -14,6 +14,7 @@
 #include "core/util/stage_timer.h"
 #include "pipelines/frontend/frontend_outputs.h"
 #include "pipelines/georef/sequential_georef.h"
+#include "pipelines/hyperspectral/hyperspectral_point_cloud.h"
 #include "tools/hsmap/joint_stage.h"
 #include "tools/hsmap/run_stages.h"
 
@@ -112,6 +113,12 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
       ->check(CLI::PositiveNumber);
   command->add_flag("!--no-geotiff", options.geotiff,
                     "Skip hyperspectral/ortho.tif (the ENVI ortho-image is always written)");
+  command->add_option("--point-cell", options.point_cell_m,
+                      "Cell size in metres of hyperspectral/points.ply, the hyperspectral point cloud "
+                      "(the hits binned into cubes: mean position and mean spectrum of each)")
+      ->default_val(options.point_cell_m);
+  command->add_flag("!--no-points", options.points,
+                    "Skip hyperspectral/points.ply (one more cast and read of the cube)");
   command->add_option("--extrinsic-rounds", options.extrinsic_rounds,
                       "sequential: rounds of the RGB-UHI extrinsic refinement from the RGB and "
                       "hyperspectral ortho-images, each followed by a new cast (0: keep survey.yaml's "
@@ -141,6 +148,18 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
     err << "error: unknown surface '" << options.surface << "' for --surface; expected one of "
         << joined(supportedSurfaces()) << "\n";
     return 1;
+  }
+  if (options.points) {
+    HyperspectralPointCloudOptions points;
+    points.cell_m = options.point_cell_m;
+    try {
+      points.validate();
+    } catch (const std::invalid_argument&) {
+      err << "error: --point-cell " << options.point_cell_m << ": expected a cell size between "
+          << HyperspectralPointCloudOptions::kMinCellM << " and " << HyperspectralPointCloudOptions::kMaxCellM
+          << " m (default " << HyperspectralPointCloudOptions{}.cell_m << "; --no-points skips the point cloud)\n";
+      return 1;
+    }
   }
   const std::vector<std::string>& stages = variantStages(options.variant);
   const int last = options.until.empty() ? int(stages.size()) - 1 : indexOf(stages, options.until);
@@ -193,6 +212,7 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   if (indexOf(stages, "products") >= first && indexOf(stages, "products") <= last) {
     record.options["ortho_pixel_m"] = formatDouble(options.ortho_pixel_m);
     record.options["geotiff"] = options.geotiff ? "true" : "false";
+    record.options["point_cell_m"] = options.points ? formatDouble(options.point_cell_m) : "none";
     if (options.variant == "sequential") {
       record.options["extrinsic_rounds"] = std::to_string(options.extrinsic_rounds);
     }

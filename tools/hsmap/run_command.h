@@ -47,6 +47,11 @@ struct RunOptions {
   std::string surface = "dense";  // dense or sparse
   double ortho_pixel_m = 0.005;    // products: ortho-image pixel size
   bool geotiff = true;             // products: also write hyperspectral/ortho.tif
+  // products: hyperspectral/points.ply, the hits binned into cubes of
+  // point_cell_m metres (mean position and spectrum a cube;
+  // pipelines/hyperspectral/hyperspectral_point_cloud.h).
+  bool points = true;
+  double point_cell_m = 0.02;
   // sequential: rounds of the extrinsic refinement from the RGB and
   // hyperspectral ortho-images (0: keep survey.yaml's guess).
   int extrinsic_rounds = 2;

@@ -20,6 +20,7 @@
 #include "pipelines/georef/sequential_georef.h"
 #include "pipelines/hyperspectral/hyperspectral_ortho.h"
 #include "pipelines/hyperspectral/extrinsic_refinement.h"
+#include "pipelines/hyperspectral/hyperspectral_point_cloud.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
 #include "pipelines/hyperspectral/stacked_products.h"
 #include "pipelines/surface/dense_surface.h"
@@ -147,9 +148,20 @@ void runSurfaceStage(const Survey& survey, const GeorefResult& georef, const Run
       << options.out.string() << "\n";
 }
 
+void writePointCloudProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
+                             const MeshRayCaster& mesh, const RunOptions& options, std::ostream& out) {
+  if (!options.points) return;
+  HyperspectralPointCloudOptions points;
+  points.cell_m = options.point_cell_m;
+  const HyperspectralPointCloudReport report = writeHyperspectralPointCloud(
+      *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
+      survey.origin, options.out / "hyperspectral/points.ply", points, out);
+  out << report.summary() << "wrote " << report.ply.string() << "\n";
+}
+
 HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
                                  const MeshRayCaster& mesh, const UtmProjection& projection,
-                                 const RunOptions& options, bool geotiff, std::ostream& out) {
+                                 const RunOptions& options, bool geotiff, std::ostream& out, bool points) {
   HyperspectralOptions products;
   products.pixel_m = options.ortho_pixel_m;
   products.write_geotiff = geotiff;
@@ -157,6 +169,7 @@ HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePos
       *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
       projection, options.out / "hyperspectral", products, out);
   out << report.summary();
+  if (points) writePointCloudProducts(survey, line_poses, mesh, options, out);
   return report;
 }
 
@@ -219,6 +232,8 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
         calibration.warnings.push_back("extrinsic refinement, round " + std::to_string(round) + ": " + warning);
       }
       writeRunCalibration(calibration_yaml, calibration);
+      // The last cast skipped the point cloud (a round was to follow).
+      writePointCloudProducts(survey, line_poses, mesh, options, out);
       break;
     }
     line_poses = updatedLinePoses(line_poses, T_C_U_lines, result.T_C_U);
@@ -237,7 +252,8 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
     writeRunCalibration(calibration_yaml, calibration);
     out << "products: wrote the refined T_C_U into " << calibration_yaml.string() << " and the scan line poses "
         << "into " << results_paths::trajectory_uhi_lines << "; casting again\n";
-    report = castProducts(survey, line_poses, mesh, projection, options, false, out);
+    report = castProducts(survey, line_poses, mesh, projection, options, false, out,
+                          round == options.extrinsic_rounds);
   }
 }
 
@@ -286,9 +302,11 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   // With a refinement to follow, the GeoTIFF is exported once, from the
   // last cast's ENVI ortho-image.
   const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  // The point cloud from the final line poses: after the refinement's last
+  // cast when one follows (the joint stage writes it again each round).
   HyperspectralReport report =
       castProducts(survey, line_poses, mesh, projection, options,
-                   options.geotiff && !refine && !joint_follows, out);
+                   options.geotiff && !refine && !joint_follows, out, !refine);
   if (refine) {
     refineExtrinsic(survey, line_poses, mesh, projection, options, report, out);
     if (options.geotiff) {
@@ -303,6 +321,7 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   for (const fs::path& path : {report.ortho_tif, report.quicklook_png, report.ancillary_hdr}) {
     if (!path.empty()) out << ", " << path.string();
   }
+  if (options.points) out << ", " << (options.out / "hyperspectral/points.ply").string();
   out << "\n";
 
   writeRgbOrthoProducts(ply, report.grid, projection, options, out);

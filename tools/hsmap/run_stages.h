@@ -41,10 +41,16 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
 
 // Shared by the products and joint stages.
 // One cast of every scan line onto the mesh: the hyperspectral products in
-// RUN/hyperspectral (the GeoTIFF only when `geotiff`).
+// RUN/hyperspectral (the GeoTIFF only when `geotiff`; the point cloud
+// points.ply when `points` and options.points).
 HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
                                  const MeshRayCaster& mesh, const UtmProjection& projection,
-                                 const RunOptions& options, bool geotiff, std::ostream& out);
+                                 const RunOptions& options, bool geotiff, std::ostream& out,
+                                 bool points = true);
+// RUN/hyperspectral/points.ply from these line poses (nothing when
+// options.points is false).
+void writePointCloudProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
+                             const MeshRayCaster& mesh, const RunOptions& options, std::ostream& out);
 // RUN/map/rgb_ortho.png (+ .tif): the textured mesh on the ortho grid.
 void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmProjection& projection,
                            const RunOptions& options, std::ostream& out);
