@@ -17,6 +17,7 @@
 #include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
 #include "core/io/float_transpose.h"
+#include "pipelines/hyperspectral/spectrum_validity.h"
 #include "core/io/ply_io.h"
 #include "core/util/input_error.h"
 #include "core/util/progress.h"
@@ -359,21 +360,9 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
           // float_transpose.h; the element-by-element loop was the costliest step).
           transposeFloats(in, std::size_t(bands), std::size_t(samples), std::size_t(samples),
                           slot.sample_major[k].data(), std::size_t(bands));
-          // Validity band by band over the line (vectorised): a sample is
-          // non-finite if any band is, else ignored if any band is the ignore value.
           std::uint8_t* non_finite = slot.non_finite[k].data();
           std::uint8_t* ignored = slot.ignored[k].data();
-          std::fill(non_finite, non_finite + samples, std::uint8_t(0));
-          std::fill(ignored, ignored + samples, std::uint8_t(0));
-          constexpr float kMax = std::numeric_limits<float>::max();
-          for (int b = 0; b < bands; ++b) {
-            const float* row = in + std::size_t(b) * samples;
-            for (int s = 0; s < samples; ++s) non_finite[s] |= std::uint8_t(!(std::fabs(row[s]) <= kMax));
-            if (ignore) {
-              const float value = *ignore;
-              for (int s = 0; s < samples; ++s) ignored[s] |= std::uint8_t(row[s] == value);
-            }
-          }
+          markInvalidSamples(in, bands, samples, ignore, non_finite, ignored);
           const ScanLineHits& line = slot.hits[k];
           for (int s = 0; s < samples; ++s) {
             std::uint8_t& st = slot.status[k][std::size_t(s)];

@@ -1,0 +1,25 @@
+#include "pipelines/hyperspectral/spectrum_validity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+namespace hsmap {
+
+void markInvalidSamples(const float* band_major, int bands, int samples, std::optional<float> ignore,
+                        std::uint8_t* non_finite, std::uint8_t* ignored) {
+  std::fill(non_finite, non_finite + samples, std::uint8_t(0));
+  std::fill(ignored, ignored + samples, std::uint8_t(0));
+  constexpr float kMax = std::numeric_limits<float>::max();
+  for (int b = 0; b < bands; ++b) {
+    const float* row = band_major + std::size_t(b) * std::size_t(samples);
+    for (int s = 0; s < samples; ++s) non_finite[s] |= std::uint8_t(!(std::fabs(row[s]) <= kMax));
+    if (ignore) {
+      const float value = *ignore;
+      for (int s = 0; s < samples; ++s) ignored[s] |= std::uint8_t(row[s] == value);
+    }
+  }
+}
+
+}  // namespace hsmap

@@ -1,0 +1,18 @@
+#pragma once
+// Which samples of one scan line have a usable spectrum, the rule shared by
+// every product cast from the cube (ortho-image, point cloud): a sample is
+// NON-FINITE if any of its bands is NaN or infinite, else IGNORED if any band
+// equals the cube header's `data ignore value`. Such samples are counted and
+// left out, never painted or averaged as numbers.
+#include <cstdint>
+#include <optional>
+
+namespace hsmap {
+
+// `band_major`: one line as read from the cube, bands x samples (band by
+// band). Writes one flag per sample into non_finite and ignored (1 = yes).
+// Band by band over the line, so the inner loops vectorise.
+void markInvalidSamples(const float* band_major, int bands, int samples, std::optional<float> ignore,
+                        std::uint8_t* non_finite, std::uint8_t* ignored);
+
+}  // namespace hsmap
