@@ -119,15 +119,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
   options.validate();
   const int bands = cube.bands();
   const int samples = cube.samples();
-  if (int(wavelengths_nm.size()) != bands) {
-    throw std::invalid_argument("writeHyperspectralOrtho: " + std::to_string(wavelengths_nm.size()) +
-                                " wavelengths for a cube of " + std::to_string(bands) + " bands");
-  }
-  if (camera.samples() != samples) {
-    throw std::invalid_argument("writeHyperspectralOrtho: the UHI camera has " +
-                                std::to_string(camera.samples()) + " samples, the cube " +
-                                std::to_string(samples));
-  }
+  requireCubeMatches("writeHyperspectralOrtho", cube, wavelengths_nm, camera);
   for (const LinePose& pose : line_poses) {
     if (pose.line < 0 || pose.line >= cube.lines()) {
       throw std::invalid_argument("writeHyperspectralOrtho: line pose for scan line " +

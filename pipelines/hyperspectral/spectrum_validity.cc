@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
 
 namespace hsmap {
 
@@ -19,6 +20,18 @@ void markInvalidSamples(const float* band_major, int bands, int samples, std::op
       const float value = *ignore;
       for (int s = 0; s < samples; ++s) ignored[s] |= std::uint8_t(row[s] == value);
     }
+  }
+}
+
+void requireCubeMatches(const std::string& who, const EnviReader& cube,
+                        const std::vector<double>& wavelengths_nm, const PushbroomCamera& camera) {
+  if (int(wavelengths_nm.size()) != cube.bands()) {
+    throw std::invalid_argument(who + ": " + std::to_string(wavelengths_nm.size()) +
+                                " wavelengths for a cube of " + std::to_string(cube.bands()) + " bands");
+  }
+  if (camera.samples() != cube.samples()) {
+    throw std::invalid_argument(who + ": the UHI camera has " + std::to_string(camera.samples()) +
+                                " samples, the cube " + std::to_string(cube.samples()));
   }
 }
 

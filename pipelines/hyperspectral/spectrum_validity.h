@@ -6,6 +6,11 @@
 // left out, never painted or averaged as numbers.
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry/pushbroom_camera.h"
+#include "core/io/envi_reader.h"
 
 namespace hsmap {
 
@@ -14,5 +19,11 @@ namespace hsmap {
 // Band by band over the line, so the inner loops vectorise.
 void markInvalidSamples(const float* band_major, int bands, int samples, std::optional<float> ignore,
                         std::uint8_t* non_finite, std::uint8_t* ignored);
+
+// The inputs every product cast from the cube needs to agree on: one
+// wavelength per band and the UHI camera's samples equal to the cube's.
+// std::invalid_argument starting with `who` otherwise.
+void requireCubeMatches(const std::string& who, const EnviReader& cube,
+                        const std::vector<double>& wavelengths_nm, const PushbroomCamera& camera);
 
 }  // namespace hsmap
