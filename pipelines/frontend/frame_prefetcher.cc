@@ -15,9 +15,10 @@ double msSince(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 FramePrefetcher::FramePrefetcher(const RgbFrameSource& source, const FrontendOptions& options,
-                                 int width_px, int height_px, int first, int last)
+                                 int width_px, int height_px, int first, int last,
+                                 cv::Mat lamp_light_field)
     : source_(source),
-      preprocessor_(options, width_px, height_px),
+      preprocessor_(options, width_px, height_px, std::move(lamp_light_field)),
       first_(first),
       last_(last),
       capacity_(std::size_t(options.prefetch_frames)) {

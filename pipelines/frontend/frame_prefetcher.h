@@ -40,8 +40,9 @@ struct PrefetchedFrame {
 class FramePrefetcher {
  public:
   // Frames first..last (inclusive) of `source`.
+  // `lamp_light_field`: see ImagePreprocessor (empty: none).
   FramePrefetcher(const RgbFrameSource& source, const FrontendOptions& options, int width_px,
-                  int height_px, int first, int last);
+                  int height_px, int first, int last, cv::Mat lamp_light_field = {});
   ~FramePrefetcher();
   FramePrefetcher(const FramePrefetcher&) = delete;
   FramePrefetcher& operator=(const FramePrefetcher&) = delete;

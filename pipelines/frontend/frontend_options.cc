@@ -41,6 +41,9 @@ void FrontendOptions::validate() const {
   positive("reference_width_px", reference_width_px);
   positive("clahe_clip_limit", clahe_clip_limit);
   atLeast("clahe_tiles_across", clahe_tiles_across, 1);
+  atLeast("lamp_light_frames", lamp_light_frames, 1);
+  atLeast("lamp_light_min_frames", lamp_light_min_frames, 1);
+  positive("lamp_light_blur_px", lamp_light_blur_px);
   if (!(min_contrast_dn >= 0.0 && std::isfinite(min_contrast_dn))) {
     invalid("min_contrast_dn", min_contrast_dn, "a finite number >= 0");
   }

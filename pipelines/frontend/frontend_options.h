@@ -31,6 +31,15 @@ struct FrontendOptions {
   bool use_clahe = true;
   double clahe_clip_limit = 2.0;
   int clahe_tiles_across = 8;  // tiles across the width; rows keep them square
+  // Lamp light removed before CLAHE and tracking (lamp_light_field.h): each
+  // frame is divided by the lamps' light pattern, estimated as the blurred
+  // mean of frames sampled over the survey. Without it the tracks fall short
+  // of the motion where the light falls off, and the trajectory's scale
+  // drifts along the track.
+  bool correct_lamp_light = true;
+  int lamp_light_frames = 200;       // frames sampled evenly over the survey
+  int lamp_light_min_frames = 30;    // fewer usable frames: no correction (the mean would keep texture)
+  double lamp_light_blur_px = 8.0;   // Gaussian sigma at the reference width
   // A frame is "without usable texture" (a loss, not tracked) when the
   // standard deviation of its grey levels is below this (8-bit DN): black,
   // uniformly blurred into a wash, or a lens covered by silt.

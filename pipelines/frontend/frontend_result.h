@@ -111,6 +111,9 @@ struct FrontendResult {
   double trackingFramesPerSecond() const;
   double peak_memory_mb = 0.0;
   std::vector<std::string> warnings;  // undecodable frames, unlinked segments, ...
+  // Whether the lamps' light was divided out before tracking, from how many
+  // frames, and why not (lamp_light_field.h); empty when not run.
+  std::string lamp_light_note;
 
   int posedFrameCount() const;
   // One paragraph: frames posed, keyframes, landmarks, losses, speed.

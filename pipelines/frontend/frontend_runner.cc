@@ -9,6 +9,7 @@
 #include "core/util/stage_timer.h"
 #include "pipelines/frontend/frame_prefetcher.h"
 #include "pipelines/frontend/frame_tracker.h"
+#include "pipelines/frontend/lamp_light_field.h"
 #include "pipelines/frontend/segment_linker.h"
 #include "pipelines/frontend/tracking_loss_monitor.h"
 
@@ -194,7 +195,17 @@ FrontendResult runFrontend(const Survey& survey, const FrontendOptions& options,
   const auto start = std::chrono::steady_clock::now();
   FrameTracker tracker(options, camera);
   {
-    FramePrefetcher prefetcher(survey.rgb, options, camera.width(), camera.height(), first, last);
+    LampLightEstimate lamp_light;
+    if (options.correct_lamp_light) {
+      lamp_light = estimateLampLight(survey.rgb, first, last, options, camera.width(), camera.height());
+      char seconds[32];
+      std::snprintf(seconds, sizeof(seconds), " (%.1f s)", lamp_light.seconds);
+      result.lamp_light_note = lamp_light.note + seconds;
+    } else {
+      result.lamp_light_note = "lamp light not corrected (switched off)";
+    }
+    FramePrefetcher prefetcher(survey.rgb, options, camera.width(), camera.height(), first, last,
+                               lamp_light.field);
     int done = 0;
     while (auto frame = prefetcher.next()) {
       if (!frame->error.empty()) {

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+
+#include "pipelines/frontend/lamp_light_field.h"
 
 namespace hsmap {
 
-ImagePreprocessor::ImagePreprocessor(const FrontendOptions& options, int width_px, int height_px)
-    : use_clahe_(options.use_clahe) {
+ImagePreprocessor::ImagePreprocessor(const FrontendOptions& options, int width_px, int height_px,
+                                     cv::Mat lamp_light_field)
+    : use_clahe_(options.use_clahe), lamp_light_field_(std::move(lamp_light_field)) {
   if (use_clahe_) {
     const int across = options.clahe_tiles_across;
     const int down = std::max(1, static_cast<int>(std::lround(across * double(height_px) / width_px)));
@@ -25,6 +29,7 @@ cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) co
     throw std::invalid_argument("ImagePreprocessor: expected a 1- or 3-channel 8-bit image");
   }
   if (quality != nullptr) *quality = measure(gray);
+  if (!lamp_light_field_.empty()) gray = removeLampLight(gray, lamp_light_field_);
   if (!use_clahe_) return gray;
   cv::Mat equalised;
   clahe_->apply(gray, equalised);

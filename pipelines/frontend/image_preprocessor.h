@@ -3,7 +3,8 @@
 // turned into the 8-bit grey image that the tracker works on, and the
 // measures that say whether the frame has usable texture at all.
 //
-// Grey: OpenCV's luma (cv::COLOR_BGR2GRAY). Then, when enabled, CLAHE
+// Grey: OpenCV's luma (cv::COLOR_BGR2GRAY). Then, when a lamp light field is
+// given, the frame divided by it (lamp_light_field.h). Then, when enabled, CLAHE
 // (contrast-limited adaptive histogram equalisation, Zuiderveld 1994): the
 // lamps of an ROV light the seabed unevenly and dimly, so a global contrast
 // leaves the image corners nearly black; CLAHE equalises contrast per tile
@@ -30,7 +31,10 @@ struct ImageQuality {
 class ImagePreprocessor {
  public:
   // `width_px`: the survey's image width, for the CLAHE tile size.
-  ImagePreprocessor(const FrontendOptions& options, int width_px, int height_px);
+  // `lamp_light_field`: CV_32F of the image's size (estimateLampLight), or
+  // empty for none.
+  ImagePreprocessor(const FrontendOptions& options, int width_px, int height_px,
+                    cv::Mat lamp_light_field = {});
 
   // Grey image to track on (CLAHE applied when enabled); `quality`, when not
   // null, receives the measures of the raw grey image.
@@ -41,6 +45,7 @@ class ImagePreprocessor {
 
  private:
   bool use_clahe_;
+  cv::Mat lamp_light_field_;
   cv::Ptr<cv::CLAHE> clahe_;
 };
 
