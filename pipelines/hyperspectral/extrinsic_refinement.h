@@ -65,6 +65,16 @@
 // a time offset error shows up as an apparent shift along track and is
 // partly absorbed by T_C_U. Iterating (recast with updatedLinePoses(),
 // refine again) converges as the ortho-images come into register.
+//
+// Where each part lives (this header includes them all):
+//   extrinsic_refinement_options.h  the options of every step
+//   ortho_luminance.h               step 1
+//   ortho_matching.h                steps 2-3 on two luminance images
+//   extrinsic_tie_point.h           a tie point (what steps 2-3 make)
+//   run_tie_points.h                steps 1-3 on a run folder
+//   extrinsic_from_tie_points.h     step 4, the prior and the result
+//   ortho_grid_from_header.h        an ortho-image's grid from its header
+//   this header                     the whole refinement on a run folder
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -81,150 +91,17 @@
 #include "core/io/envi_header.h"
 #include "core/io/envi_reader.h"
 #include "core/survey/pose_tables.h"
+#include "pipelines/hyperspectral/extrinsic_from_tie_points.h"
+#include "pipelines/hyperspectral/extrinsic_refinement_options.h"
+#include "pipelines/hyperspectral/extrinsic_tie_point.h"
 #include "pipelines/hyperspectral/ortho_grid.h"
+#include "pipelines/hyperspectral/ortho_grid_from_header.h"
+#include "pipelines/hyperspectral/ortho_luminance.h"
+#include "pipelines/hyperspectral/ortho_matching.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
+#include "pipelines/hyperspectral/run_tie_points.h"
 
 namespace hsmap {
-
-struct ExtrinsicRefinementOptions {
-  // Luminance (step 1).
-  double band_min_nm = 450.0;
-  double band_max_nm = 650.0;
-  bool fit_band_weights = true;
-  double ridge = 1e-3;    // relative to the mean diagonal of the normal equations
-  int fit_stride_px = 4;  // fit on every n-th row and column
-  // Matching (step 2).
-  double patch_spacing_m = 0.15;
-  double patch_size_m = 0.20;
-  double search_radius_m = 0.15;
-  double blur_sigma_px = 1.5;
-  double highpass_sigma_px = 10.0;  // minus a blur of this sigma (shading); 0: off
-  double min_ncc = 0.7;
-  double min_peak_margin = 0.1;
-  double exclusion_radius_px = 6.0;
-  double min_template_std = 0.25;  // of the image's standard deviation
-  // Solve (step 4).
-  double sigma_match_m = 0.005;  // 1-sigma of a match on the ground
-  double robust_scale = 3.0;     // Cauchy, in sigmas
-  int min_tie_points = 6;        // fewer: the prior alone (T_C_U kept)
-  int max_iterations = 50;
-  int num_threads = 0;  // 0: every hardware thread
-
-  // std::invalid_argument naming the field and what is allowed.
-  void validate() const;
-};
-
-// One association: UHI pixel (line, sample) saw the mesh point p_W.
-struct ExtrinsicTiePoint {
-  long long line = 0;
-  double sample = 0.0;
-  double range_m = 0.0;  // UHI range of the pixel (sets its noise); <= 0: 2 m
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
-  // Where it came from (diagnostics): RGB and hyperspectral grid positions, NCC.
-  Eigen::Vector2d rgb_col_row = Eigen::Vector2d::Zero();
-  Eigen::Vector2d hyper_col_row = Eigen::Vector2d::Zero();
-  double ncc = 0.0;
-};
-
-// The extrinsic guess and its sigmas (survey.yaml's uhi block).
-struct ExtrinsicPrior {
-  SE3d T_C_U;
-  double sigma_rotation_deg = 2.0;
-  double sigma_translation_m = 0.05;
-};
-
-struct ExtrinsicRefinementResult {
-  SE3d T_C_U_initial;  // the extrinsic of the line poses used (start of the solve)
-  SE3d T_C_U;          // refined (== initial when not refined)
-  bool refined = false;
-  // 1-sigma: rotation about U's x, y, z (deg), translation along C's x, y, z (m);
-  // nullopt when not refined or the covariance is undefined.
-  std::optional<Eigen::Vector3d> sigma_rotation_deg;
-  std::optional<Eigen::Vector3d> sigma_translation_m;
-
-  // Matching.
-  std::int64_t patches = 0;          // lattice patches tried
-  std::int64_t matches = 0;          // kept by the NCC tests
-  std::int64_t tie_points = 0;       // given (matches with ancillary and a mesh point)
-  std::int64_t inliers = 0;          // tie points used in the final solve
-  std::int64_t outliers = 0;         // removed after the first solve
-  double median_shift_m = 0.0;       // |h - g| over the tie points, on the grid
-  std::vector<double> band_weights;  // per band of the ortho (0 outside the range)
-  double band_offset = 0.0;
-  double band_fit_r2 = 0.0;  // of the luminance fit (0 when fixed weights)
-  // Residuals over the inliers, whitened-free: RMS of u (px) and of the
-  // across-line offset (as px: f * y/z), before (at T_C_U_initial) and after.
-  double rms_u_before_px = 0.0, rms_across_before_px = 0.0;
-  double rms_u_after_px = 0.0, rms_across_after_px = 0.0;
-  std::string solve_report;  // SolveReport::toString() of the final solve
-  std::vector<std::string> warnings;
-  std::vector<ExtrinsicTiePoint> used;  // inlier tie points
-
-  // A few lines for the run's log.
-  std::string summary() const;
-};
-
-// Step 4 alone: refine T_C_U from tie points with the lines' camera poses.
-// `line_poses` are T_W_U made with T_C_U_lines (any order; each tie point's
-// line must be among them, else it is skipped with a warning). With fewer
-// than options.min_tie_points usable tie points T_C_U is left at
-// T_C_U_lines and the result says so (refined == false).
-ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
-    const std::vector<ExtrinsicTiePoint>& tie_points, const std::vector<LinePose>& line_poses,
-    const SE3d& T_C_U_lines, const PushbroomParameters& camera, const ExtrinsicPrior& prior,
-    const ExtrinsicRefinementOptions& options = {});
-
-// Step 1: the hyperspectral luminance (CV_32F, NaN where empty) and how it
-// was made.
-struct BandCombination {
-  cv::Mat luma;                 // CV_32F, rows x cols
-  std::vector<double> weights;  // per band
-  double offset = 0.0;
-  double r2 = 0.0;
-  bool fitted = false;
-};
-
-// Step 1 on an open ortho-image (rows x cols x bands, one wavelength per
-// band): bands in [band_min_nm, band_max_nm] averaged in bins of 20 nm, the
-// bins' weights fitted to `rgb_luma` (or fixed, see the header comment).
-// One pass over the file. std::invalid_argument when no band is in range or
-// the sizes differ.
-BandCombination hyperspectralLuminance(const EnviReader& ortho,
-                                       const std::vector<double>& wavelengths_nm,
-                                       const cv::Mat& rgb_luma,
-                                       const ExtrinsicRefinementOptions& options);
-
-// The RGB luminance (CV_32F, NaN where alpha is 0) of a BGRA image.
-cv::Mat rgbLuminance(const cv::Mat& bgra);
-
-// What the matching did with the lattice's patches.
-struct OrthoMatchCounts {
-  std::int64_t patches = 0;     // lattice patches
-  std::int64_t textured = 0;    // both windows valid, template textured
-  std::int64_t matched = 0;     // confident and unambiguous NCC peak
-  std::int64_t tie_points = 0;  // of those, with ancillary and a mesh point
-};
-
-// Steps 2-3 on two luminance images of one grid: tie points from the
-// ancillary image (CV_32FC4: line, sample, range, incidence; NaN empty) and
-// the renderer's points. Appends to `tie_points`.
-OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_luma,
-                                  const cv::Mat& ancillary, const RgbOrthoRenderer& renderer,
-                                  const ExtrinsicRefinementOptions& options,
-                                  std::vector<ExtrinsicTiePoint>& tie_points);
-
-// Steps 1-3 on a run folder (RUN/hyperspectral/ortho.*, ancillary.*,
-// RUN/map/mesh.ply): the tie points between the two ortho-images, for any
-// solver that uses them (this refinement, the joint problem).
-struct RunTiePoints {
-  std::vector<ExtrinsicTiePoint> tie_points;
-  OrthoMatchCounts counts;
-  BandCombination combination;  // luma released
-  double median_shift_m = 0.0;  // |h - g| over the tie points, on the grid
-};
-RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
-                                   const UtmProjection& projection,
-                                   const ExtrinsicRefinementOptions& options, std::ostream& log);
 
 // The whole refinement on a run folder (see the header comment). T_C_U_lines
 // is the extrinsic RUN/trajectory/uhi_lines.csv was made with (e.g.
@@ -240,9 +117,5 @@ ExtrinsicRefinementResult refineExtrinsicInRun(
 // (line and time kept).
 std::vector<LinePose> updatedLinePoses(const std::vector<LinePose>& line_poses,
                                        const SE3d& T_C_U_lines, const SE3d& T_C_U_new);
-
-// The grid of an ENVI header's map info (UTM, square pixels, reference pixel
-// (1, 1)); std::invalid_argument otherwise.
-OrthoGrid orthoGridFromHeader(const EnviHeader& header);
 
 }  // namespace hsmap
