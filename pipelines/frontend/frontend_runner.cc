@@ -47,7 +47,8 @@ std::vector<SegmentRecord> linkSegments(const Survey& survey, const FrameTracker
   if (survey.ins.fixes.empty()) {
     for (auto& fit : fits) fit.failure = "the survey has no INS";
   } else {
-    const InsCameraTrack ins(survey);
+    const InsBodyTrack ins(survey, kSegmentLinkerInsOptions);
+    const SE3d T_B_C(survey.config.ins.T_B_C.rotation, survey.config.ins.T_B_C.translation_m);
     for (std::size_t s = 0; s < spans.size(); ++s) {
       std::vector<double> times;
       std::vector<SE3d> poses;
@@ -55,7 +56,7 @@ std::vector<SegmentRecord> linkSegments(const Survey& survey, const FrameTracker
         times.push_back(tracker.map().keyframe(k).t);
         poses.push_back(tracker.map().keyframe(k).T_F_C);
       }
-      fits[s] = fitSegmentToIns(times, poses, ins, options.min_segment_keyframes);
+      fits[s] = fitSegmentToIns(times, poses, ins, T_B_C, options.min_segment_keyframes);
     }
   }
   int reference = -1;

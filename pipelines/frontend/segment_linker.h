@@ -11,13 +11,15 @@
 // takes the segment into F. The fit of F itself is part of the link, so its
 // error enters both sides.
 //
-// INS camera positions (InsCameraTrack). Each fix is converted to local NED
-// W (core/geometry/local_ned_frame.h, at the survey's origin), the body
-// position and attitude are interpolated at the keyframe time (linear /
-// slerp between the 1 Hz fixes), and the lever arm is added:
+// INS camera positions. The INS body track (core/survey/ins_body_track.h):
+// each fix converted to local NED W at the survey's origin, the body
+// position and attitude interpolated at the keyframe time (linear / slerp
+// between the 1 Hz fixes); then the lever arm is added:
 //     p_W_C = p_W_B + R_W_B t_B_C           (T_B_C = survey.config.ins.T_B_C).
 // When the INS has no attitude, R_W_B is taken from the fit itself:
-// R_W_B = R_W_C R_B_C^T with R_W_C = R_W_S R_S_C, the fit repeated twice.
+// R_W_B = R_W_C R_B_C^T with R_W_C = R_W_S R_S_C, the fit repeated twice; the
+// track's along-track heading is not needed then, and not derived
+// (kSegmentLinkerInsOptions).
 //
 // The fit. With INS attitude, the rotation R_W_S is the chordal mean of
 // R_W_C(INS) R_S_C^T over the keyframes (attitude is good to a tenth of a
@@ -38,35 +40,17 @@
 
 #include "core/geometry/se3.h"
 #include "core/geometry/sim3.h"
+#include "core/survey/ins_body_track.h"
 
 namespace hsmap {
 
-struct Survey;
-
-class InsCameraTrack {
- public:
-  // From the survey's INS (survey.ins, survey.origin, survey.config.ins.T_B_C).
-  explicit InsCameraTrack(const Survey& survey);
-  // From body poses already in W (tests).
-  InsCameraTrack(std::vector<double> times, std::vector<Eigen::Vector3d> p_W_B,
-                 std::vector<Eigen::Quaterniond> q_W_B, bool has_attitude, const SE3d& T_B_C);
-
-  bool hasAttitude() const { return has_attitude_; }
-  bool covers(double t) const;
-  double fixInterval() const;  // median time between fixes
-  const SE3d& T_B_C() const { return T_B_C_; }
-  // Body position and attitude at t (t inside the fixes' span).
-  Eigen::Vector3d bodyPosition(double t) const;
-  Eigen::Quaterniond bodyAttitude(double t) const;
-
- private:
-  std::size_t segmentIndex(double t, double* alpha) const;
-  std::vector<double> times_;
-  std::vector<Eigen::Vector3d> p_W_B_;
-  std::vector<Eigen::Quaterniond> q_W_B_;
-  bool has_attitude_ = false;
-  SE3d T_B_C_;
-};
+// The body track the linker fits segments to (InsBodyTrack(survey,
+// kSegmentLinkerInsOptions)): positions only when the INS has no attitude,
+// and the attitude slerped between fixes, the arithmetic the linker has
+// always used (core/survey/ins_body_track.h, InsAttitudeInterpolation).
+inline constexpr InsBodyTrackOptions kSegmentLinkerInsOptions{
+    .derive_attitude = false,
+    .attitude_interpolation = InsAttitudeInterpolation::quaternion_slerp};
 
 struct SegmentFit {
   bool ok = false;
@@ -76,8 +60,9 @@ struct SegmentFit {
   double rms_m = 0.0;  // position residual of the fit, metres in W
 };
 
-// Fits a segment's keyframe poses T_S_C (at times t) to the INS.
+// Fits a segment's keyframe poses T_S_C (at times t) to the INS, the RGB
+// camera C at T_B_C in the body B.
 SegmentFit fitSegmentToIns(const std::vector<double>& times, const std::vector<SE3d>& T_S_C,
-                           const InsCameraTrack& ins, int min_keyframes);
+                           const InsBodyTrack& ins, const SE3d& T_B_C, int min_keyframes);
 
 }  // namespace hsmap

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/geometry/se3.h"
-#include "pipelines/georef/ins_body_track.h"
+#include "core/survey/ins_body_track.h"
 
 namespace hsmap {
 

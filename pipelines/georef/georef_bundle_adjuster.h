@@ -34,8 +34,8 @@
 #include <vector>
 
 #include "core/geometry/se3.h"
+#include "core/survey/ins_body_track.h"
 #include "pipelines/frontend/visual_map.h"
-#include "pipelines/georef/ins_body_track.h"
 #include "solvers/graph_solver.h"
 
 namespace hsmap {

@@ -29,8 +29,8 @@
 
 #include "core/geometry/se3.h"
 #include "core/geometry/sim3.h"
+#include "core/survey/ins_body_track.h"
 #include "pipelines/georef/camera_trajectory.h"
-#include "pipelines/georef/ins_body_track.h"
 
 namespace hsmap {
 

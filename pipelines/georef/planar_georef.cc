@@ -1,7 +1,7 @@
 #include "pipelines/georef/planar_georef.h"
 
+#include "core/survey/ins_body_track.h"
 #include "pipelines/georef/camera_trajectory.h"
-#include "pipelines/georef/ins_body_track.h"
 #include "pipelines/georef/scan_line_poses.h"
 
 namespace hsmap {

@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "core/geometry/pinhole_radtan_camera.h"
+#include "core/survey/ins_body_track.h"
 #include "pipelines/georef/camera_trajectory.h"
 #include "pipelines/georef/frame_reposer.h"
 #include "pipelines/georef/ins_alignment.h"
-#include "pipelines/georef/ins_body_track.h"
 #include "pipelines/georef/scan_line_poses.h"
 
 namespace hsmap {

@@ -18,10 +18,10 @@
 #include <functional>
 #include <string>
 
+#include "core/survey/ins_body_track.h"
 #include "core/survey/survey.h"
 #include "pipelines/frontend/frontend_result.h"
 #include "pipelines/georef/georef_bundle_adjuster.h"
-#include "pipelines/georef/ins_body_track.h"
 #include "pipelines/georef/georef_options.h"
 #include "pipelines/georef/georef_result.h"
 

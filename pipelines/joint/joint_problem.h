@@ -53,7 +53,7 @@
 #include "pipelines/frontend/frontend_result.h"
 #include "pipelines/frontend/visual_map.h"
 #include "pipelines/georef/georef_bundle_adjuster.h"
-#include "pipelines/georef/ins_body_track.h"
+#include "core/survey/ins_body_track.h"
 #include "solvers/graph_solver.h"
 
 namespace hsmap {

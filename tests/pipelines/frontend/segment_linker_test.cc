@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "tests/pipelines/frontend/synthetic_scene.h"
 
 namespace hsmap {
@@ -41,13 +43,24 @@ Flight fly(double t0, double t1) {
   return f;
 }
 
+// The flight's INS as the linker's body track; without attitude the fixes
+// carry none (identity).
+InsBodyTrack insTrack(const Flight& f, bool has_attitude) {
+  std::vector<InsBodyFix> fixes;
+  for (std::size_t i = 0; i < f.ins_times.size(); ++i) {
+    fixes.push_back({f.ins_times[i], f.p_W_B[i],
+                     has_attitude ? f.q_W_B[i] : Eigen::Quaterniond::Identity(), 0});
+  }
+  return InsBodyTrack(std::move(fixes), has_attitude, kSegmentLinkerInsOptions);
+}
+
 TEST(SegmentLinker, RecoversTheSimilarityOfASegmentFromTheInsWithAttitude) {
   const Flight f = fly(5.0, 15.0);
   const Sim3 S_S_W(0.3, expSO3(Eigen::Vector3d(0.3, -1.0, 2.0)), Eigen::Vector3d(1.0, -2.0, 0.5));
   std::vector<SE3d> T_S_C;
   for (const SE3d& T : f.T_W_C) T_S_C.push_back(S_S_W.transformPose(T));
-  const InsCameraTrack ins(f.ins_times, f.p_W_B, f.q_W_B, true, f.T_B_C);
-  const SegmentFit fit = fitSegmentToIns(f.times, T_S_C, ins, 4);
+  const InsBodyTrack ins = insTrack(f, true);
+  const SegmentFit fit = fitSegmentToIns(f.times, T_S_C, ins, f.T_B_C, 4);
   ASSERT_TRUE(fit.ok) << fit.failure;
   const Sim3 expected = S_S_W.inverse();
   EXPECT_NEAR(fit.S_W_S.scale(), expected.scale(), 2e-3 * expected.scale());
@@ -65,9 +78,8 @@ TEST(SegmentLinker, WithoutAttitudeTheLeverArmComesFromTheFit) {
   const Sim3 S_S_W(2.0, expSO3(Eigen::Vector3d(0.1, 0.2, -0.3)), Eigen::Vector3d(0.0, 1.0, 0.0));
   std::vector<SE3d> T_S_C;
   for (const SE3d& T : f.T_W_C) T_S_C.push_back(S_S_W.transformPose(T));
-  std::vector<Eigen::Quaterniond> no_attitude(f.q_W_B.size(), Eigen::Quaterniond::Identity());
-  const InsCameraTrack ins(f.ins_times, f.p_W_B, no_attitude, false, f.T_B_C);
-  const SegmentFit fit = fitSegmentToIns(f.times, T_S_C, ins, 4);
+  const InsBodyTrack ins = insTrack(f, false);
+  const SegmentFit fit = fitSegmentToIns(f.times, T_S_C, ins, f.T_B_C, 4);
   ASSERT_TRUE(fit.ok) << fit.failure;
   double worst = 0.0;
   for (std::size_t i = 0; i < f.times.size(); ++i) worst = std::max(worst, (fit.S_W_S.apply(T_S_C[i].t) - f.T_W_C[i].t).norm());
@@ -77,12 +89,12 @@ TEST(SegmentLinker, WithoutAttitudeTheLeverArmComesFromTheFit) {
 
 TEST(SegmentLinker, RefusesASegmentTooShortToFit) {
   const Flight f = fly(5.0, 5.6);
-  const InsCameraTrack ins(f.ins_times, f.p_W_B, f.q_W_B, true, f.T_B_C);
-  const SegmentFit fit = fitSegmentToIns(f.times, f.T_W_C, ins, 4);
+  const InsBodyTrack ins = insTrack(f, true);
+  const SegmentFit fit = fitSegmentToIns(f.times, f.T_W_C, ins, f.T_B_C, 4);
   EXPECT_FALSE(fit.ok);
   EXPECT_NE(fit.failure.find("fewer than 4"), std::string::npos) << fit.failure;
   const Flight g = fly(5.0, 6.5);
-  const SegmentFit short_fit = fitSegmentToIns(g.times, g.T_W_C, ins, 4);
+  const SegmentFit short_fit = fitSegmentToIns(g.times, g.T_W_C, ins, f.T_B_C, 4);
   EXPECT_FALSE(short_fit.ok);
   EXPECT_NE(short_fit.failure.find("two INS fix intervals"), std::string::npos) << short_fit.failure;
 }

@@ -12,7 +12,7 @@
 #include "core/geometry/se3.h"
 #include "core/geometry/sim3.h"
 #include "core/geometry/so3.h"
-#include "pipelines/georef/ins_body_track.h"
+#include "core/survey/ins_body_track.h"
 
 namespace hsmap::georef_testing {
 

@@ -1,4 +1,4 @@
-#include "pipelines/georef/ins_body_track.h"
+#include "core/survey/ins_body_track.h"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +84,46 @@ TEST(InsBodyTrack, RefusesFixesOutOfOrder) {
     EXPECT_STREQ(error.what(),
                  "InsBodyTrack: fix 2 at t = 101 s does not follow the previous one (t = 101 s)");
   }
+}
+
+TEST(InsBodyTrack, SlerpAndGeodesicAgreeBetweenFixesAndTheSlerpIsEigens) {
+  std::vector<InsBodyFix> fixes(3);
+  for (int i = 0; i < 3; ++i) {
+    fixes[i].t = 10.0 + i;
+    fixes[i].p_W_B = Eigen::Vector3d(0.4 * i, -0.1 * i * i, 5.0);
+    fixes[i].q_W_B = quaternionFromRollPitchHeadingDeg(2.0 * i, -1.0 * i, 30.0 + 7.0 * i);
+  }
+  InsBodyTrackOptions options;
+  options.attitude_interpolation = InsAttitudeInterpolation::quaternion_slerp;
+  const InsBodyTrack slerp(fixes, /*has_attitude=*/true, options);
+  const InsBodyTrack geodesic(fixes, /*has_attitude=*/true);
+  for (const double t : {10.0, 10.3, 11.0, 11.7, 12.0}) {
+    const SE3d a = slerp.bodyPose(t), b = geodesic.bodyPose(t);
+    EXPECT_LT((a.t - b.t).norm(), 1e-12) << "at t = " << t;
+    EXPECT_LT(std::abs(std::abs(a.q.dot(b.q)) - 1.0), 1e-12) << "at t = " << t;
+  }
+  // Slerp mode is Eigen's slerp, the last fix the end of the last interval.
+  EXPECT_TRUE(slerp.bodyPose(11.7).q.coeffs() ==
+              fixes[1].q_W_B.slerp((11.7 - 11.0) / (12.0 - 11.0), fixes[2].q_W_B).coeffs());
+  EXPECT_TRUE(slerp.bodyPose(12.0).q.coeffs() == fixes[1].q_W_B.slerp(1.0, fixes[2].q_W_B).coeffs());
+  EXPECT_THROW(slerp.bodyPose(12.01), std::out_of_range);
+}
+
+TEST(InsBodyTrack, WithoutAttitudeAndNoDerivationTheAttitudeStaysIdentity) {
+  InsBodyTrackOptions options;
+  options.derive_attitude = false;
+  const InsBodyTrack track(straightTrack(0.5, 0.0, 10), /*has_attitude=*/false, options);
+  EXPECT_FALSE(track.hasAttitude());
+  for (const InsBodyFix& fix : track.fixes()) {
+    EXPECT_TRUE(fix.q_W_B.coeffs() == Eigen::Quaterniond::Identity().coeffs()) << fix.t;
+  }
+}
+
+TEST(InsBodyTrack, FixIntervalIsTheMedianGapBetweenFixes) {
+  auto fixes = straightTrack(0.0, 0.0, 6);
+  fixes[5].t = 200.0;  // one long gap does not move the median
+  EXPECT_DOUBLE_EQ(InsBodyTrack(fixes, true).fixInterval(), 1.0);
+  EXPECT_DOUBLE_EQ(InsBodyTrack(straightTrack(0.0, 0.0, 1), true).fixInterval(), 0.0);
 }
 
 }  // namespace

@@ -1,9 +1,10 @@
-#include "pipelines/georef/ins_body_track.h"
+#include "core/survey/ins_body_track.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "core/geometry/pose_interpolation.h"
 #include "core/geometry/so3.h"
@@ -22,14 +23,29 @@ std::vector<InsBodyFix> bodyFixes(const Survey& survey) {
   return fixes;
 }
 
+InsBodyTrackOptions withHeadingWindow(double heading_window_s) {
+  InsBodyTrackOptions options;
+  options.heading_window_s = heading_window_s;
+  return options;
+}
+
 }  // namespace
 
 InsBodyTrack::InsBodyTrack(const Survey& survey, double heading_window_s)
-    : InsBodyTrack(bodyFixes(survey), survey.ins.has_attitude, heading_window_s) {}
+    : InsBodyTrack(survey, withHeadingWindow(heading_window_s)) {}
+
+InsBodyTrack::InsBodyTrack(const Survey& survey, const InsBodyTrackOptions& options)
+    : InsBodyTrack(bodyFixes(survey), survey.ins.has_attitude, options) {}
 
 InsBodyTrack::InsBodyTrack(std::vector<InsBodyFix> fixes, bool has_attitude,
                            double heading_window_s)
-    : fixes_(std::move(fixes)), has_attitude_(has_attitude) {
+    : InsBodyTrack(std::move(fixes), has_attitude, withHeadingWindow(heading_window_s)) {}
+
+InsBodyTrack::InsBodyTrack(std::vector<InsBodyFix> fixes, bool has_attitude,
+                           const InsBodyTrackOptions& options)
+    : fixes_(std::move(fixes)),
+      has_attitude_(has_attitude),
+      attitude_interpolation_(options.attitude_interpolation) {
   if (fixes_.empty()) throw std::invalid_argument("InsBodyTrack: no INS fixes");
   for (std::size_t i = 0; i < fixes_.size(); ++i) {
     if (i > 0 && !(fixes_[i].t > fixes_[i - 1].t)) {
@@ -40,7 +56,7 @@ InsBodyTrack::InsBodyTrack(std::vector<InsBodyFix> fixes, bool has_attitude,
     }
     times_.push_back(fixes_[i].t);
   }
-  if (!has_attitude_) deriveAlongTrackAttitude(heading_window_s);
+  if (!has_attitude_ && options.derive_attitude) deriveAlongTrackAttitude(options.heading_window_s);
 }
 
 void InsBodyTrack::deriveAlongTrackAttitude(double heading_window_s) {
@@ -80,6 +96,14 @@ void InsBodyTrack::deriveAlongTrackAttitude(double heading_window_s) {
 
 bool InsBodyTrack::covers(double t) const { return t >= times_.front() && t <= times_.back(); }
 
+double InsBodyTrack::fixInterval() const {
+  if (times_.size() < 2) return 0.0;
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < times_.size(); ++i) gaps.push_back(times_[i] - times_[i - 1]);
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  return gaps[gaps.size() / 2];
+}
+
 SE3d InsBodyTrack::bodyPose(double t) const {
   if (!covers(t)) {
     std::ostringstream message;
@@ -87,7 +111,18 @@ SE3d InsBodyTrack::bodyPose(double t) const {
             << ", " << times_.back() << "] s";
     throw std::out_of_range(message.str());
   }
-  const auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  auto after = std::upper_bound(times_.begin(), times_.end(), t);
+  if (attitude_interpolation_ == InsAttitudeInterpolation::quaternion_slerp) {
+    // The segment linker's arithmetic, kept to the bit: t at the last fix is
+    // the end (alpha = 1) of the last interval, the position is blended as
+    // (1 - alpha) p_a + alpha p_b at every alpha, the attitude slerped.
+    if (fixes_.size() == 1) return SE3d(fixes_.front().q_W_B, fixes_.front().p_W_B);
+    if (after == times_.end()) --after;
+    const std::size_t i = std::size_t(after - times_.begin()) - 1;
+    const double alpha = (t - times_[i]) / (times_[i + 1] - times_[i]);
+    return SE3d(fixes_[i].q_W_B.slerp(alpha, fixes_[i + 1].q_W_B),
+                (1.0 - alpha) * fixes_[i].p_W_B + alpha * fixes_[i + 1].p_W_B);
+  }
   if (after == times_.end()) return SE3d(fixes_.back().q_W_B, fixes_.back().p_W_B);
   const std::size_t i = std::size_t(after - times_.begin()) - 1;
   const double alpha = (t - times_[i]) / (times_[i + 1] - times_[i]);
