@@ -5,32 +5,27 @@
 #include <ostream>
 
 #include "core/io/envi_header.h"
+#include "core/util/message_text.h"
 
 namespace hsmap {
 namespace {
 
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
-
 void printStream(std::ostream& out, const char* label, const char* unit, const StreamTiming& s) {
-  out << "  " << label << ": " << s.count << " " << unit << ", t = [" << fixed(s.first_t, 6) << ", "
-      << fixed(s.last_t, 6) << "] s (" << fixed(s.last_t - s.first_t, 3) << " s)";
-  if (s.count >= 2) out << ", " << fixed(s.rate_hz, 3) << " Hz";
+  out << "  " << label << ": " << s.count << " " << unit << ", t = [" << fixedDecimals(s.first_t, 6) << ", "
+      << fixedDecimals(s.last_t, 6) << "] s (" << fixedDecimals(s.last_t - s.first_t, 3) << " s)";
+  if (s.count >= 2) out << ", " << fixedDecimals(s.rate_hz, 3) << " Hz";
   out << "\n";
   if (s.gap_count == 0) {
-    out << "    gaps: none (no step longer than 1.5x the median " << fixed(s.median_step_s, 6)
+    out << "    gaps: none (no step longer than 1.5x the median " << fixedDecimals(s.median_step_s, 6)
         << " s)\n";
     return;
   }
   out << "    gaps: " << s.gap_count << " step(s) longer than 1.5x the median "
-      << fixed(s.median_step_s, 6) << " s";
+      << fixedDecimals(s.median_step_s, 6) << " s";
   out << (s.gap_count > s.first_gaps.size() ? "; the first:\n" : ":\n");
   for (const TimeGap& gap : s.first_gaps) {
-    out << "      " << fixed(gap.t_before, 6) << " -> " << fixed(gap.t_after, 6) << " s (step "
-        << fixed(gap.t_after - gap.t_before, 6) << " s, before entry " << gap.index << ")\n";
+    out << "      " << fixedDecimals(gap.t_before, 6) << " -> " << fixedDecimals(gap.t_after, 6) << " s (step "
+        << fixedDecimals(gap.t_after - gap.t_before, 6) << " s, before entry " << gap.index << ")\n";
   }
 }
 
@@ -107,14 +102,14 @@ void printSurveySummary(std::ostream& out, const SurveySummary& s) {
   out << "survey '" << s.name << "' (" << s.folder.string() << "): valid\n";
   out << "sensors:\n";
   const PinholeRadtanParameters& c = s.rgb_camera;
-  out << "  RGB: pinhole-radtan " << c.width << "x" << c.height << ", fx " << fixed(c.fx, 2)
-      << ", fy " << fixed(c.fy, 2) << ", cx " << fixed(c.cx, 2) << ", cy " << fixed(c.cy, 2) << "; "
+  out << "  RGB: pinhole-radtan " << c.width << "x" << c.height << ", fx " << fixedDecimals(c.fx, 2)
+      << ", fy " << fixedDecimals(c.fy, 2) << ", cx " << fixedDecimals(c.cx, 2) << ", cy " << fixedDecimals(c.cy, 2) << "; "
       << s.rgb_source << "\n";
   out << "  UHI: pushbroom, " << s.uhi_samples << " samples x " << s.uhi_bands << " bands, "
       << s.uhi_lines << " lines, " << s.uhi_data_type << ", " << s.uhi_interleave << ", f "
-      << fixed(s.uhi_camera.f, 2) << ", cx " << fixed(s.uhi_camera.cx, 2) << "\n";
-  out << "       wavelengths " << fixed(s.wavelength_min_nm, 1) << " - "
-      << fixed(s.wavelength_max_nm, 1) << " nm; time offset guess " << fixed(s.uhi_time_offset_s, 6)
+      << fixedDecimals(s.uhi_camera.f, 2) << ", cx " << fixedDecimals(s.uhi_camera.cx, 2) << "\n";
+  out << "       wavelengths " << fixedDecimals(s.wavelength_min_nm, 1) << " - "
+      << fixedDecimals(s.wavelength_max_nm, 1) << " nm; time offset guess " << fixedDecimals(s.uhi_time_offset_s, 6)
       << " s\n";
   out << "  INS: " << (s.ins_has_attitude ? "position and attitude" : "position only (no attitude)")
       << "\n";
@@ -122,8 +117,8 @@ void printSurveySummary(std::ostream& out, const SurveySummary& s) {
   printStream(out, "RGB frames", "frames", s.rgb);
   printStream(out, "UHI lines", "lines", s.uhi);
   printStream(out, "INS fixes", "fixes", s.ins);
-  out << "origin: lat " << fixed(s.origin.lat_deg, 8) << ", lon " << fixed(s.origin.lon_deg, 8)
-      << ", depth " << fixed(s.origin.depth_m, 3) << " m ("
+  out << "origin: lat " << fixedDecimals(s.origin.lat_deg, 8) << ", lon " << fixedDecimals(s.origin.lon_deg, 8)
+      << ", depth " << fixedDecimals(s.origin.depth_m, 3) << " m ("
       << (s.origin_from_config ? "given in survey.yaml" : "first INS fix") << ")\n";
   if (!s.truth.present) {
     out << "truth: none\n";

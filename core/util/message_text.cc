@@ -1,8 +1,18 @@
 #include "core/util/message_text.h"
 
 #include <cstdio>
+#include <ios>
+#include <sstream>
 
 namespace hsmap {
+
+std::string fixedDecimals(double value, int decimals) {
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text.precision(decimals);
+  text << value;
+  return text.str();
+}
 
 std::size_t utf8SequenceLength(std::string_view text) {
   if (text.empty()) return 0;

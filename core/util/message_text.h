@@ -21,6 +21,10 @@ namespace hsmap {
 // bytes follow: "abcdef... (100000 bytes)".
 std::string escapeForMessage(std::string_view text, std::size_t max_chars = 60);
 
+// `value` with exactly `decimals` digits after the point ("0.125", "3.0"),
+// as std::fixed prints it, for numbers in messages and summaries.
+std::string fixedDecimals(double value, int decimals);
+
 // escapeForMessage() between single quotes: 'abc'.
 std::string quoteForMessage(std::string_view text, std::size_t max_chars = 60);
 

@@ -4,14 +4,10 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/util/message_text.h"
+
 namespace hsmap {
 namespace {
-
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
-}
 
 std::string sourceCounts(int vision, int bridged, int ins_only, int held, const char* unit) {
   std::ostringstream out;
@@ -50,7 +46,7 @@ std::string GeorefResult::summary() const {
   if (alignment) {
     out << "  INS alignment: " << alignment->inlier_count << " of "
         << alignment->paired_fixes.size() << " fixes within vision agree (threshold "
-        << fixed(alignment->threshold_m, 2) << " m), rms " << fixed(alignment->rms_m, 3)
+        << fixedDecimals(alignment->threshold_m, 2) << " m), rms " << fixedDecimals(alignment->rms_m, 3)
         << " m, scale " << alignment->S_W_F.scale() << ", rotation from "
         << alignment->rotation_from << "\n";
   }
@@ -60,7 +56,7 @@ std::string GeorefResult::summary() const {
         << " landmarks, " << b.reprojection_factors << " reprojections, " << b.position_factors
         << " INS positions";
     if (b.position_correlation_factor > 1.0) {
-      out << " (sigmas x " << fixed(b.position_correlation_factor, 1)
+      out << " (sigmas x " << fixedDecimals(b.position_correlation_factor, 1)
           << ": fixes within the INS's correlation time count as one)";
     }
     out << ", " << b.attitude_factors
@@ -75,8 +71,8 @@ std::string GeorefResult::summary() const {
   } else {
     out << "  INS fixes left out (" << rejected_fixes.size() << "):\n";
     for (const RejectedFix& r : rejected_fixes) {
-      out << "    ins.csv line " << r.line_number << " (t = " << fixed(r.t, 3) << " s): "
-          << fixed(r.offset_m, 2) << " m off the track, found by the " << r.stage << "\n";
+      out << "    ins.csv line " << r.line_number << " (t = " << fixedDecimals(r.t, 3) << " s): "
+          << fixedDecimals(r.offset_m, 2) << " m off the track, found by the " << r.stage << "\n";
     }
   }
   if (variant == "sequential") {

@@ -12,6 +12,7 @@
 #include "core/graph/factor_graph.h"
 #include "core/graph/key.h"
 #include "core/graph/values.h"
+#include "core/util/message_text.h"
 #include "factors/extrinsic_prior_factor.h"
 #include "factors/pushbroom_extrinsic_factor.h"
 #include "solvers/graph_problem.h"
@@ -24,14 +25,6 @@ namespace hsmap {
 namespace {
 
 constexpr double kDefaultRangeM = 2.0;
-
-std::string fixed(double value, int digits) {
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(digits);
-  text << value;
-  return text.str();
-}
 
 struct LineResidual {
   double u = 0.0;       // px
@@ -57,23 +50,23 @@ std::string ExtrinsicRefinementResult::summary() const {
   std::ostringstream out;
   out << "extrinsic refinement: " << patches << " patches, " << matches << " matches, "
       << tie_points << " tie points, " << inliers << " inliers, " << outliers
-      << " outliers; median shift " << fixed(1000.0 * median_shift_m, 1) << " mm";
-  if (band_fit_r2 > 0.0) out << "; band fit R^2 " << fixed(band_fit_r2, 3);
+      << " outliers; median shift " << fixedDecimals(1000.0 * median_shift_m, 1) << " mm";
+  if (band_fit_r2 > 0.0) out << "; band fit R^2 " << fixedDecimals(band_fit_r2, 3);
   out << "\n";
   if (!refined) {
     out << "  T_C_U kept (not refined)\n";
   } else {
     const Eigen::Vector2d change = extrinsicChange(T_C_U_initial, T_C_U);
-    out << "  T_C_U moved by " << fixed(change.x(), 3) << " deg, " << fixed(1000.0 * change.y(), 1)
-        << " mm; residual RMS u " << fixed(rms_u_before_px, 2) << " -> " << fixed(rms_u_after_px, 2)
-        << " px, across " << fixed(rms_across_before_px, 2) << " -> "
-        << fixed(rms_across_after_px, 2) << " px\n";
+    out << "  T_C_U moved by " << fixedDecimals(change.x(), 3) << " deg, " << fixedDecimals(1000.0 * change.y(), 1)
+        << " mm; residual RMS u " << fixedDecimals(rms_u_before_px, 2) << " -> " << fixedDecimals(rms_u_after_px, 2)
+        << " px, across " << fixedDecimals(rms_across_before_px, 2) << " -> "
+        << fixedDecimals(rms_across_after_px, 2) << " px\n";
     if (sigma_rotation_deg && sigma_translation_m) {
-      out << "  1-sigma rotation (deg, about U x y z) " << fixed((*sigma_rotation_deg)[0], 4) << " "
-          << fixed((*sigma_rotation_deg)[1], 4) << " " << fixed((*sigma_rotation_deg)[2], 4)
-          << ", translation (mm, along C x y z) " << fixed(1000.0 * (*sigma_translation_m)[0], 2)
-          << " " << fixed(1000.0 * (*sigma_translation_m)[1], 2) << " "
-          << fixed(1000.0 * (*sigma_translation_m)[2], 2) << "\n";
+      out << "  1-sigma rotation (deg, about U x y z) " << fixedDecimals((*sigma_rotation_deg)[0], 4) << " "
+          << fixedDecimals((*sigma_rotation_deg)[1], 4) << " " << fixedDecimals((*sigma_rotation_deg)[2], 4)
+          << ", translation (mm, along C x y z) " << fixedDecimals(1000.0 * (*sigma_translation_m)[0], 2)
+          << " " << fixedDecimals(1000.0 * (*sigma_translation_m)[1], 2) << " "
+          << fixedDecimals(1000.0 * (*sigma_translation_m)[2], 2) << "\n";
     }
   }
   for (const std::string& warning : warnings) out << "  warning: " << warning << "\n";

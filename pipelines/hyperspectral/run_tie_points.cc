@@ -14,6 +14,7 @@
 
 #include "core/io/envi_reader.h"
 #include "core/io/ply_io.h"
+#include "core/util/message_text.h"
 #include "pipelines/hyperspectral/ortho_grid_from_header.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
 
@@ -28,14 +29,6 @@ double median(std::vector<double> values) {
   const auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
   std::nth_element(values.begin(), middle, values.end());
   return *middle;
-}
-
-std::string fixed(double value, int digits) {
-  std::ostringstream text;
-  text.setf(std::ios::fixed);
-  text.precision(digits);
-  text << value;
-  return text.str();
 }
 
 }  // namespace
@@ -65,15 +58,15 @@ RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
   renderer.renderColours(0, 0, grid.cols, grid.rows, bgra);
   const cv::Mat rgb_luma = rgbLuminance(bgra);
   log << "tie points: RGB ortho rendered (" << grid.cols << " x " << grid.rows << "), "
-      << fixed(seconds(), 1) << " s\n";
+      << fixedDecimals(seconds(), 1) << " s\n";
 
   RunTiePoints out;
   BandCombination combination =
       hyperspectralLuminance(ortho, ortho.header().wavelength, rgb_luma, options);
   log << "tie points: hyperspectral luminance ("
-      << (combination.fitted ? "fitted, R^2 " + fixed(combination.r2, 3)
+      << (combination.fitted ? "fitted, R^2 " + fixedDecimals(combination.r2, 3)
                              : std::string("fixed weights"))
-      << "), " << fixed(seconds(), 1) << " s\n";
+      << "), " << fixedDecimals(seconds(), 1) << " s\n";
 
   cv::Mat ancillary(grid.rows, grid.cols, CV_32FC4, cv::Scalar::all(kNaN));
   Eigen::MatrixXf line;
@@ -89,7 +82,7 @@ RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
                                 out.tie_points);
   log << "tie points: " << out.counts.patches << " patches, " << out.counts.textured
       << " textured, " << out.counts.matched << " matched, " << out.counts.tie_points
-      << " tie points, " << fixed(seconds(), 1) << " s\n";
+      << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";
   combination.luma.release();
   out.combination = std::move(combination);
   std::vector<double> shifts;

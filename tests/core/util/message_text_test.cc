@@ -39,5 +39,15 @@ TEST(MessageTextTest, Utf8SequenceLengths) {
   EXPECT_EQ(utf8SequenceLength(""), 0u);
 }
 
+TEST(MessageTextTest, FixedDecimalsPrintsExactlyTheDigitsAskedFor) {
+  EXPECT_EQ(fixedDecimals(0.125, 3), "0.125");
+  EXPECT_EQ(fixedDecimals(3.0, 1), "3.0");
+  EXPECT_EQ(fixedDecimals(-2.46, 1), "-2.5");
+  EXPECT_EQ(fixedDecimals(36000.5156, 3), "36000.516");
+  EXPECT_EQ(fixedDecimals(7.6, 0), "8");
+  // Beyond the 64 characters a fixed buffer would have held.
+  EXPECT_EQ(fixedDecimals(1e70, 2).size(), 71u + 3u);
+}
+
 }  // namespace
 }  // namespace hsmap
