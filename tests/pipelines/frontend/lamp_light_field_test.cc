@@ -47,13 +47,18 @@ cv::Mat frameAt(const cv::Mat& ground, const cv::Mat& light, double x, double y)
   return out;
 }
 
-TEST(LampLightField, RecoversTheLightFromFramesOfDifferentGround) {
-  const cv::Mat ground = seabed(), light = lampLight();
+// 120 frames of the seabed at random places, as a survey samples them.
+std::vector<cv::Mat> framesOfDifferentGround(const cv::Mat& ground, const cv::Mat& light, unsigned seed) {
   std::vector<cv::Mat> frames;
-  std::mt19937 rng(3);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> offset(0.0, 850.0);
   for (int k = 0; k < 120; ++k) frames.push_back(frameAt(ground, light, offset(rng), offset(rng)));
-  const cv::Mat field = lampLightFieldFromFrames(frames, 8.0);
+  return frames;
+}
+
+TEST(LampLightField, RecoversTheLightFromFramesOfDifferentGround) {
+  const cv::Mat ground = seabed(), light = lampLight();
+  const cv::Mat field = lampLightFieldFromFrames(framesOfDifferentGround(ground, light, 3), 8.0);
   ASSERT_EQ(field.size(), light.size());
   EXPECT_NEAR(cv::mean(field)[0], 1.0, 1e-6);
   // Away from the border (where the blur reflects), within 5 % of the light.
@@ -119,11 +124,7 @@ double meanShortfallAlongMotion(const cv::Mat& ground, const cv::Mat& light, con
 
 TEST(LampLightField, TracksNoLongerFallShortOfTheMotionOnceTheLightIsRemoved) {
   const cv::Mat ground = seabed(), light = lampLight();
-  std::vector<cv::Mat> frames;
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> offset(0.0, 850.0);
-  for (int k = 0; k < 120; ++k) frames.push_back(frameAt(ground, light, offset(rng), offset(rng)));
-  const cv::Mat field = lampLightFieldFromFrames(frames, 8.0);
+  const cv::Mat field = lampLightFieldFromFrames(framesOfDifferentGround(ground, light, 5), 8.0);
   const double raw = meanShortfallAlongMotion(ground, light, nullptr);
   const double corrected = meanShortfallAlongMotion(ground, light, &field);
   const double unlit = meanShortfallAlongMotion(ground, cv::Mat(light.size(), CV_32F, cv::Scalar(1.0)), nullptr);
