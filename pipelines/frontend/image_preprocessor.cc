@@ -19,7 +19,7 @@ ImagePreprocessor::ImagePreprocessor(const FrontendOptions& options, int width_p
   }
 }
 
-cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) const {
+cv::Mat ImagePreprocessor::grey(const cv::Mat& bgr) {
   cv::Mat gray;
   if (bgr.channels() == 3) {
     cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
@@ -28,6 +28,11 @@ cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) co
   } else {
     throw std::invalid_argument("ImagePreprocessor: expected a 1- or 3-channel 8-bit image");
   }
+  return gray;
+}
+
+cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) const {
+  cv::Mat gray = grey(bgr);
   if (quality != nullptr) *quality = measure(gray);
   if (!lamp_light_field_.empty()) gray = removeLampLight(gray, lamp_light_field_);
   if (!use_clahe_) return gray;

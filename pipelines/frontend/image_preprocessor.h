@@ -40,6 +40,10 @@ class ImagePreprocessor {
   // null, receives the measures of the raw grey image.
   cv::Mat process(const cv::Mat& bgr, ImageQuality* quality) const;
 
+  // The 8-bit grey image of an 8-bit BGR (or already grey) frame, before
+  // any correction; throws std::invalid_argument for other channel counts.
+  static cv::Mat grey(const cv::Mat& bgr);
+
   // Measures of an 8-bit grey image (on a 4x subsampled copy: statistics, not detail).
   static ImageQuality measure(const cv::Mat& gray);
 

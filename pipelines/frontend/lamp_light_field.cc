@@ -13,30 +13,44 @@
 
 namespace hsmap {
 
-cv::Mat lampLightFieldFromFrames(const std::vector<cv::Mat>& gray_frames, double blur_sigma_px) {
-  if (gray_frames.empty()) throw std::invalid_argument("lampLightFieldFromFrames: no frames");
+namespace {
+
+// `frame` added to `sum` (CV_32F; allocated at the first frame's size). The
+// frames are summed as they are decoded, so the estimate holds one frame
+// and the sum, not every sampled frame.
+void addToSum(const cv::Mat& frame, cv::Mat& sum) {
+  if (sum.empty()) sum = cv::Mat::zeros(frame.size(), CV_32F);
+  if (frame.type() != CV_8UC1 || frame.size() != sum.size()) {
+    throw std::invalid_argument("lampLightFieldFromFrames: every frame must be 8-bit grey of " +
+                                std::to_string(sum.cols) + " x " + std::to_string(sum.rows));
+  }
+  cv::accumulate(frame, sum);
+}
+
+// The field from the sum of the frames: blurred, scaled to mean 1, floored.
+cv::Mat fieldFromSum(const cv::Mat& sum, double blur_sigma_px) {
   if (!(blur_sigma_px > 0.0)) {
     throw std::invalid_argument("lampLightFieldFromFrames: the blur sigma must be > 0, got " +
                                 std::to_string(blur_sigma_px));
-  }
-  const cv::Size size = gray_frames.front().size();
-  cv::Mat sum = cv::Mat::zeros(size, CV_32F);
-  for (const cv::Mat& frame : gray_frames) {
-    if (frame.type() != CV_8UC1 || frame.size() != size) {
-      throw std::invalid_argument("lampLightFieldFromFrames: every frame must be 8-bit grey of " +
-                                  std::to_string(size.width) + " x " + std::to_string(size.height));
-    }
-    cv::accumulate(frame, sum);
   }
   cv::Mat field;
   cv::GaussianBlur(sum, field, cv::Size(0, 0), blur_sigma_px, blur_sigma_px, cv::BORDER_REFLECT);
   const double mean = cv::mean(field)[0];
   if (!(mean > 0.0)) {
     // Black frames only: nothing to correct.
-    return cv::Mat(size, CV_32F, cv::Scalar(1.0));
+    return cv::Mat(sum.size(), CV_32F, cv::Scalar(1.0));
   }
   field /= mean;
   return cv::max(field, kMinRelativeLight);
+}
+
+}  // namespace
+
+cv::Mat lampLightFieldFromFrames(const std::vector<cv::Mat>& gray_frames, double blur_sigma_px) {
+  if (gray_frames.empty()) throw std::invalid_argument("lampLightFieldFromFrames: no frames");
+  cv::Mat sum;
+  for (const cv::Mat& frame : gray_frames) addToSum(frame, sum);
+  return fieldFromSum(sum, blur_sigma_px);
 }
 
 cv::Mat removeLampLight(const cv::Mat& gray, const cv::Mat& field) {
@@ -57,8 +71,7 @@ LampLightEstimate estimateLampLight(const RgbFrameSource& source, int first, int
   LampLightEstimate estimate;
   const int available = last - first + 1;
   const int wanted = std::min(available, options.lamp_light_frames);
-  std::vector<cv::Mat> frames;
-  frames.reserve(std::size_t(std::max(0, wanted)));
+  cv::Mat sum;
   for (int k = 0; k < wanted; ++k) {
     // Evenly over the survey, first and last included.
     const int i = wanted == 1 ? first : first + int((long long)(available - 1) * k / (wanted - 1));
@@ -69,12 +82,7 @@ LampLightEstimate estimateLampLight(const RgbFrameSource& source, int first, int
       ++estimate.frames_skipped;  // the tracking pass reports it
       continue;
     }
-    cv::Mat gray;
-    if (bgr.channels() == 3) {
-      cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
-    } else {
-      gray = bgr;
-    }
+    const cv::Mat gray = ImagePreprocessor::grey(bgr);
     if (gray.cols != width_px || gray.rows != height_px) {
       throw std::invalid_argument("frame " + std::to_string(i) + " is " + std::to_string(gray.cols) +
                                   " x " + std::to_string(gray.rows) + ", the camera " +
@@ -84,9 +92,9 @@ LampLightEstimate estimateLampLight(const RgbFrameSource& source, int first, int
       ++estimate.frames_skipped;
       continue;
     }
-    frames.push_back(gray);
+    addToSum(gray, sum);
+    ++estimate.frames_used;
   }
-  estimate.frames_used = int(frames.size());
   char text[200];
   if (estimate.frames_used < options.lamp_light_min_frames) {
     std::snprintf(text, sizeof(text),
@@ -95,8 +103,7 @@ LampLightEstimate estimateLampLight(const RgbFrameSource& source, int first, int
                   estimate.frames_used, wanted, options.lamp_light_min_frames);
     estimate.note = text;
   } else {
-    estimate.field = lampLightFieldFromFrames(
-        frames, options.lamp_light_blur_px * options.sizeScale(width_px));
+    estimate.field = fieldFromSum(sum, options.lamp_light_blur_px * options.sizeScale(width_px));
     double lo = 0.0, hi = 0.0;
     cv::minMaxLoc(estimate.field, &lo, &hi);
     estimate.brightest_to_darkest = hi / lo;
