@@ -78,7 +78,8 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header,
     staging_capacity_ =
         (kDirectChunk + line_bytes + 2 * kDirectAlignment) / kDirectAlignment * kDirectAlignment;
     staging_ = {static_cast<std::byte*>(std::aligned_alloc(kDirectAlignment, staging_capacity_)), std::free};
-    if (!staging_) {
+    writing_ = {static_cast<std::byte*>(std::aligned_alloc(kDirectAlignment, staging_capacity_)), std::free};
+    if (!staging_ || !writing_) {
       abandon();
       throw std::bad_alloc();
     }
@@ -90,6 +91,14 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header,
 EnviWriter::~EnviWriter() { abandon(); }
 
 void EnviWriter::abandon() noexcept {
+  // The background write uses fd_ and its buffer: it ends before either goes.
+  if (pending_write_.valid()) {
+    try {
+      pending_write_.get();
+    } catch (...) {
+      // Abandoning anyway: the partial file is removed below.
+    }
+  }
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   if (!finished_) {
@@ -111,13 +120,10 @@ void EnviWriter::writeAt(const std::byte* bytes, std::size_t size, std::size_t o
   }
 }
 
-void EnviWriter::flushStagedBlocks() {
-  const std::size_t whole = staged_ / kDirectAlignment * kDirectAlignment;
-  if (whole == 0) return;
+void EnviWriter::writeBlocks(const std::byte* bytes, std::size_t size, std::size_t offset) {
   std::size_t done = 0;
-  while (done < whole) {
-    const ssize_t written =
-        ::pwrite(fd_, staging_.get() + done, whole - done, static_cast<off_t>(staged_offset_ + done));
+  while (done < size) {
+    const ssize_t written = ::pwrite(fd_, bytes + done, size - done, static_cast<off_t>(offset + done));
     if (written < 0) {
       if (errno == EINTR) continue;
       if (errno == EINVAL) {
@@ -131,7 +137,22 @@ void EnviWriter::flushStagedBlocks() {
     // EINVAL, and the rest goes on buffered (above).
     done += static_cast<std::size_t>(written);
   }
-  std::memmove(staging_.get(), staging_.get() + whole, staged_ - whole);
+}
+
+void EnviWriter::waitForPendingWrite() {
+  if (pending_write_.valid()) pending_write_.get();
+}
+
+void EnviWriter::flushStagedBlocks() {
+  const std::size_t whole = staged_ / kDirectAlignment * kDirectAlignment;
+  if (whole == 0) return;
+  // The other buffer is free once its write has ended.
+  waitForPendingWrite();
+  std::memcpy(writing_.get(), staging_.get() + whole, staged_ - whole);
+  std::swap(staging_, writing_);
+  const std::byte* full = writing_.get();
+  const std::size_t offset = staged_offset_;
+  pending_write_ = std::async(std::launch::async, [this, full, whole, offset] { writeBlocks(full, whole, offset); });
   staged_ -= whole;
   staged_offset_ += whole;
 }
@@ -212,6 +233,7 @@ void EnviWriter::finish() {
   }
   if (direct_) {
     flushStagedBlocks();
+    waitForPendingWrite();
     if (staged_ > 0) {
       // The last partial block: through the page cache (O_DIRECT needs whole blocks).
       const int flags = ::fcntl(fd_, F_GETFL);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -167,14 +168,15 @@ TEST(EnviWriter, RejectsExtraLinesAndCountsLinesWhenAskedTo) {
 }
 
 TEST(EnviWriter, DirectModeWritesTheSameBytesAsBuffered) {
-  // Lines of an odd size (not whole 4 KB blocks) and a file over the 32 MB
-  // direct chunk, so that blocks are cut mid-line and the tail is partial.
+  // Lines of an odd size (not whole 4 KB blocks) and a file of several 32 MB
+  // direct chunks, so that blocks are cut mid-line, both staging buffers take
+  // turns with a write in the background, and the tail is partial.
   TempFolder dir;
   for (const EnviInterleave interleave : {EnviInterleave::bil, EnviInterleave::bip}) {
     EnviHeader header;
     header.samples = 997;
     header.bands = 37;
-    header.lines = 231;
+    header.lines = 500;
     header.data_type = EnviDataType::float32;
     header.interleave = interleave;
     EnviWriter buffered(dir / "buffered.hdr", header);
@@ -194,6 +196,26 @@ TEST(EnviWriter, DirectModeWritesTheSameBytesAsBuffered) {
                         << (direct.direct() ? ", O_DIRECT" : ", buffered fallback");
     EXPECT_EQ(TempFolder::read(dir / "buffered.hdr"), TempFolder::read(dir / "direct.hdr"));
   }
+}
+
+TEST(EnviWriter, DirectWriterAbandonedMidWriteLeavesNothing) {
+  // Destroyed with a chunk still being written in the background: the write
+  // ends, then the partial file goes; no data file, no header.
+  TempFolder dir;
+  EnviHeader header;
+  header.samples = 1024;
+  header.bands = 64;
+  header.lines = 400;
+  header.data_type = EnviDataType::float32;
+  {
+    EnviWriter writer(dir / "cut.hdr", header, EnviWriteMode::direct);
+    const std::vector<float> line(std::size_t(header.samples) * header.bands, 1.5f);
+    for (int l = 0; l < 200; ++l) writer.writeLine(line.data());  // 50 MB: one chunk handed over
+    EXPECT_TRUE(std::filesystem::exists(dir / "cut.raw.partial"));
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "cut.raw.partial"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cut.raw"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "cut.hdr"));
 }
 
 TEST(EnviWriter, EigenLineMatchesPointerLine) {
