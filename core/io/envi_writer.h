@@ -23,8 +23,8 @@
 //   take turns: while one is written by a background thread, the next lines
 //   are encoded into the other, so the device stays busy while the caller
 //   computes (a write error surfaces on the next writeLine() or finish()).
-//   Measured on the project's
-//   virtual machine: 1.3 GB/s against 0.2 GB/s buffered for a multi-GB file
+//   Measured on the project's virtual machine (single buffer): 1.3 GB/s
+//   against 0.2 GB/s buffered for a multi-GB file
 //   (the page cache's writeback is the limit, and writing GBs through it also
 //   evicts the input being read). For files much larger than the page cache
 //   read back later by nobody soon, e.g. a hyperspectral ortho-image. Where
