@@ -87,8 +87,11 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
   command->footer(
       "Variants and their stages: sequential = frontend, georef, surface, products; planar = "
       "georef (the INS alone), surface (a flat seabed), products; stacked = products (the scan "
-      "lines side by side, no map position). Joint estimation follows in a later version. Each stage writes its files into RUN under temporary names and moves them "
-      "into place when complete; run.yaml is written last. The files are described in "
+      "lines side by side, no map position); joint = sequential's stages, then joint (one "
+      "spline trajectory, T_C_U and the time offset estimated together with cross-modal tie "
+      "points; the surface and products rebuilt from it). Each stage writes its files into RUN "
+      "under temporary names and moves them into place when complete; run.yaml is written "
+      "last. The files are described in "
       "docs/SURVEY_FORMAT.md.\n"
       "Exit status: 0 on success; 2 when the survey is invalid (one line naming the file and "
       "the line or key); 1 on other failures.");
