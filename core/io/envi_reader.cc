@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/io/envi_sample_codec.h"
+#include "core/io/float_transpose.h"
 #include "core/util/input_error.h"
 
 namespace hsmap {
@@ -76,19 +77,23 @@ void EnviReader::readLine(int line, Eigen::MatrixXf& out) const {
   out = Eigen::Map<const RowMajor>(band_major.data(), header_.bands, header_.samples);
 }
 
-void EnviReader::readLine(int line, float* out) const {
+void EnviReader::readLine(int line, float* out) const { read(line, EnviLineLayout::band_major, out); }
+
+void EnviReader::readLinePixelMajor(int line, float* out) const { read(line, EnviLineLayout::pixel_major, out); }
+
+void EnviReader::read(int line, EnviLineLayout layout, float* out) const {
   if (line < 0 || line >= header_.lines) {
     throw std::out_of_range("EnviReader: line " + std::to_string(line) + " outside [0, " +
                             std::to_string(header_.lines) + ") of " + hdr_path_.string());
   }
   if (mode_ == EnviReadMode::mapped) {
-    readMapped(line, out);
+    readMapped(line, layout, out);
   } else {
-    readBuffered(line, out);
+    readBuffered(line, layout, out);
   }
 }
 
-void EnviReader::readBuffered(int line, float* out) const {
+void EnviReader::readBuffered(int line, EnviLineLayout layout, float* out) const {
   const std::lock_guard<std::mutex> lock(window_mutex_);
   if (line < window_first_ || line >= window_first_ + window_count_) {
     // Sequential reading gets a whole window; a jump gets only its line, so
@@ -113,38 +118,58 @@ void EnviReader::readBuffered(int line, float* out) const {
   last_line_ = line;
   const std::size_t k = static_cast<std::size_t>(line - window_first_);
   if (header_.interleave == EnviInterleave::bsq) {
-    decodeLine(window_.data() + k * row_bytes_, static_cast<std::size_t>(window_count_) * row_bytes_, out);
+    decodeLine(window_.data() + k * row_bytes_, static_cast<std::size_t>(window_count_) * row_bytes_, layout, out);
   } else {
-    decodeLine(window_.data() + k * line_bytes_, 0, out);
+    decodeLine(window_.data() + k * line_bytes_, 0, layout, out);
   }
 }
 
-void EnviReader::readMapped(int line, float* out) const {
+void EnviReader::readMapped(int line, EnviLineLayout layout, float* out) const {
   const std::byte* base = map_->data() + header_.header_offset;
   if (header_.interleave == EnviInterleave::bsq) {
     decodeLine(base + static_cast<std::size_t>(line) * row_bytes_,
-               static_cast<std::size_t>(header_.lines) * row_bytes_, out);
+               static_cast<std::size_t>(header_.lines) * row_bytes_, layout, out);
   } else {
-    decodeLine(base + static_cast<std::size_t>(line) * line_bytes_, 0, out);
+    decodeLine(base + static_cast<std::size_t>(line) * line_bytes_, 0, layout, out);
   }
   releaseBehind(line);
 }
 
-void EnviReader::decodeLine(const std::byte* start, std::size_t band_stride, float* out) const {
+void EnviReader::decodeLine(const std::byte* start, std::size_t band_stride, EnviLineLayout layout,
+                            float* out) const {
   const std::size_t samples = static_cast<std::size_t>(header_.samples);
   const std::size_t bands = static_cast<std::size_t>(header_.bands);
+  const bool pixel_major = layout == EnviLineLayout::pixel_major;
   switch (header_.interleave) {
     case EnviInterleave::bil:
-      // A BIL line is already band-major.
-      decodeSamples(header_.data_type, swap_bytes_, start, out, line_values_);
-      break;
-    case EnviInterleave::bsq:
-      for (std::size_t b = 0; b < bands; ++b) {
-        decodeSamples(header_.data_type, swap_bytes_, start + b * band_stride, out + b * samples, samples);
+      if (pixel_major) {
+        // The line's B rows of S values, transposed: the same kernel as BIP's
+        // with the roles of rows and columns swapped.
+        decodeSamplesTransposed(header_.data_type, swap_bytes_, start, bands, samples, out, bands);
+      } else {
+        // A BIL line is already band-major.
+        decodeSamples(header_.data_type, swap_bytes_, start, out, line_values_);
       }
       break;
+    case EnviInterleave::bsq: {
+      thread_local std::vector<float> band_major;
+      float* rows = out;
+      if (pixel_major) {
+        band_major.resize(line_values_);
+        rows = band_major.data();
+      }
+      for (std::size_t b = 0; b < bands; ++b) {
+        decodeSamples(header_.data_type, swap_bytes_, start + b * band_stride, rows + b * samples, samples);
+      }
+      if (pixel_major) transposeFloats(rows, bands, samples, samples, out, bands);
+      break;
+    }
     case EnviInterleave::bip:
-      decodeSamplesTransposed(header_.data_type, swap_bytes_, start, samples, bands, out, samples);
+      if (pixel_major) {
+        decodeSamples(header_.data_type, swap_bytes_, start, out, line_values_);
+      } else {
+        decodeSamplesTransposed(header_.data_type, swap_bytes_, start, samples, bands, out, samples);
+      }
       break;
   }
 }

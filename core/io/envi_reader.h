@@ -12,6 +12,9 @@
 // readLine returns the line band-major (out[b * S + s]), i.e. as a B x S
 // matrix: BIL is converted straight through, BIP is converted and transposed
 // together (decodeSamplesTransposed), BSQ gathers one row from each band plane.
+// readLinePixelMajor returns it pixel-major (out[s * B + b], each sample's
+// spectrum contiguous): BIP straight through, BIL converted and transposed
+// together, BSQ gathered and then transposed.
 //
 // Two ways to reach the bytes (EnviReadMode):
 // - buffered (default): pread into a reused window of consecutive lines,
@@ -50,6 +53,7 @@
 namespace hsmap {
 
 enum class EnviReadMode { buffered, mapped };
+enum class EnviLineLayout { band_major, pixel_major };
 
 class EnviReader {
  public:
@@ -68,13 +72,18 @@ class EnviReader {
   void readLine(int line, float* out) const;
   // Same, resized to bands x samples (row = band).
   void readLine(int line, Eigen::MatrixXf& out) const;
+  // Scan line `line` pixel-major: out[s * bands + b], the layout in which
+  // products average spectra. One pass over the line for BIL and BIP, where
+  // readLine followed by a transpose would take two.
+  void readLinePixelMajor(int line, float* out) const;
 
  private:
+  void read(int line, EnviLineLayout layout, float* out) const;
   // Converts one line whose first value is at `start`; for BSQ, band b's row
   // starts at start + b * band_stride bytes.
-  void decodeLine(const std::byte* start, std::size_t band_stride, float* out) const;
-  void readBuffered(int line, float* out) const;
-  void readMapped(int line, float* out) const;
+  void decodeLine(const std::byte* start, std::size_t band_stride, EnviLineLayout layout, float* out) const;
+  void readBuffered(int line, EnviLineLayout layout, float* out) const;
+  void readMapped(int line, EnviLineLayout layout, float* out) const;
   void releaseBehind(int line) const;
 
   std::filesystem::path hdr_path_;

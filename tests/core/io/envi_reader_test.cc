@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -153,6 +154,63 @@ void expectBigLine(const std::vector<float>& line, int l) {
       if (line[b * kBigSamples + s] != bigValue(l, b, s)) {
         FAIL() << "line " << l << " band " << b << " sample " << s << ": " << line[b * kBigSamples + s]
                << " != " << bigValue(l, b, s);
+      }
+    }
+  }
+}
+
+// readLinePixelMajor gives out[s * B + b] in every interleave, data type,
+// byte order and mode: each 16-bit BIL line goes through the fused
+// convert-and-transpose kernel with its rows and columns swapped, so sizes
+// that are not multiples of its 4 x 4 blocks and 16-row passes are included.
+TEST(EnviReader, PixelMajorLinesHoldEachSamplesSpectrum) {
+  TempFolder dir;
+  const auto value = [](int l, int b, int s) { return static_cast<float>((l * 37 + b * 11 + s * 5) % 611 - 300); };
+  for (const auto& [samples, bands] : {std::pair{37, 13}, std::pair{97, 211}}) {
+    for (const EnviInterleave interleave : {EnviInterleave::bil, EnviInterleave::bip, EnviInterleave::bsq}) {
+      for (const EnviDataType type : {EnviDataType::int16, EnviDataType::uint16, EnviDataType::float32,
+                                      EnviDataType::float64}) {
+        for (const int byte_order : {0, 1}) {
+          EnviHeader header;
+          header.samples = samples;
+          header.bands = bands;
+          header.lines = 5;
+          header.data_type = type;
+          header.byte_order = byte_order;
+          header.interleave = interleave;
+          const auto hdr = dir / "pixel_major.hdr";
+          {
+            EnviWriter writer(hdr, header);
+            std::vector<float> line(std::size_t(samples) * bands);
+            for (int l = 0; l < header.lines; ++l) {
+              for (int b = 0; b < bands; ++b) {
+                for (int s = 0; s < samples; ++s) {
+                  const float v = value(l, b, s);
+                  line[std::size_t(b) * samples + s] = type == EnviDataType::uint16 ? v + 300.0f : v;
+                }
+              }
+              writer.writeLine(line.data());
+            }
+            writer.finish();
+          }
+          for (const EnviReadMode mode : {EnviReadMode::buffered, EnviReadMode::mapped}) {
+            const EnviReader reader(hdr, mode);
+            std::vector<float> out(std::size_t(samples) * bands);
+            for (const int l : {0, 1, 2, 4, 3}) {
+              reader.readLinePixelMajor(l, out.data());
+              int wrong = 0;
+              for (int s = 0; s < samples; ++s) {
+                for (int b = 0; b < bands; ++b) {
+                  const float expected = value(l, b, s) + (type == EnviDataType::uint16 ? 300.0f : 0.0f);
+                  wrong += out[std::size_t(s) * bands + b] != expected;
+                }
+              }
+              EXPECT_EQ(wrong, 0) << samples << " x " << bands << ", interleave " << toString(interleave)
+                                  << ", type " << int(type) << ", byte order " << byte_order << ", "
+                                  << (mode == EnviReadMode::buffered ? "buffered" : "mapped") << ", line " << l;
+            }
+          }
+        }
       }
     }
   }
