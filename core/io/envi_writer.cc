@@ -84,6 +84,8 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header,
       throw std::bad_alloc();
     }
   }
+  floats_in_place_ = direct_ && header_.interleave == EnviInterleave::bil &&
+                     header_.data_type == EnviDataType::float32 && !swap_bytes_;
   encoded_.resize(line_values * value_bytes_);
   if (header_.interleave == EnviInterleave::bip) pixel_major_.resize(line_values);
 }
@@ -167,12 +169,36 @@ void EnviWriter::writeLine(const Eigen::MatrixXf& line) {
   writeLine(band_major.data());
 }
 
-void EnviWriter::writeLine(const float* band_major_line) {
+void EnviWriter::checkLineAllowed() const {
   if (finished_ || fd_ < 0) throw std::logic_error("EnviWriter::writeLine after finish()");
   if (!count_lines_ && lines_written_ >= header_.lines) {
     throw std::logic_error("EnviWriter " + hdr_path_.string() + ": the header has " +
                            std::to_string(header_.lines) + " lines, cannot write another");
   }
+}
+
+std::byte* EnviWriter::stagedLineSlot() {
+  // Appended to the staging buffer (BIL/BIP lines are consecutive).
+  const std::size_t line_bytes = static_cast<std::size_t>(header_.samples) * header_.bands * value_bytes_;
+  if (staged_ + line_bytes > staging_capacity_) flushStagedBlocks();
+  return staging_.get() + staged_;
+}
+
+void EnviWriter::commitStagedLine() {
+  staged_ += static_cast<std::size_t>(header_.samples) * header_.bands * value_bytes_;
+  if (staged_ >= kDirectChunk) flushStagedBlocks();
+  ++lines_written_;
+}
+
+float* EnviWriter::reserveStagedLine() {
+  if (!floats_in_place_) return nullptr;
+  checkLineAllowed();
+  // Whole lines of 4-byte values from a page-aligned buffer: float-aligned.
+  return reinterpret_cast<float*>(stagedLineSlot());
+}
+
+void EnviWriter::writeLine(const float* band_major_line) {
+  checkLineAllowed();
   const std::size_t samples = static_cast<std::size_t>(header_.samples);
   const std::size_t bands = static_cast<std::size_t>(header_.bands);
   const std::size_t line_values = samples * bands;
@@ -181,18 +207,14 @@ void EnviWriter::writeLine(const float* band_major_line) {
   const std::size_t offset = header_.header_offset;
 
   if (direct_) {
-    // Appended to the staging buffer (BIL/BIP lines are consecutive).
-    if (staged_ + line_bytes > staging_capacity_) flushStagedBlocks();
-    std::byte* target = staging_.get() + staged_;
+    std::byte* target = stagedLineSlot();
     if (header_.interleave == EnviInterleave::bip) {
       transposeFloats(band_major_line, bands, samples, samples, pixel_major_.data(), bands);
       encodeSamples(header_.data_type, swap_bytes_, pixel_major_.data(), target, line_values);
     } else {
       encodeSamples(header_.data_type, swap_bytes_, band_major_line, target, line_values);
     }
-    staged_ += line_bytes;
-    if (staged_ >= kDirectChunk) flushStagedBlocks();
-    ++lines_written_;
+    commitStagedLine();
     return;
   }
 

@@ -70,6 +70,23 @@ class EnviWriter {
   void writeLine(const float* band_major_line);
   // One line as a bands x samples matrix (row = band).
   void writeLine(const Eigen::MatrixXf& line);
+  // One line that `fill(float* band_major_line)` writes, setting all
+  // bands * samples floats. Where the file takes floats as they are (direct
+  // mode, BIL, float32 in this machine's byte order) `fill` writes straight
+  // into the staging buffer, which saves copying every line (for the
+  // hyperspectral ortho-image, GBs the write thread copied); otherwise it
+  // fills a scratch line that writeLine() encodes. The same bytes either way.
+  template <class Fill>
+  void writeLineWith(Fill&& fill) {
+    if (float* staged = reserveStagedLine()) {
+      fill(staged);
+      commitStagedLine();
+      return;
+    }
+    scratch_.resize(static_cast<std::size_t>(header_.samples) * static_cast<std::size_t>(header_.bands));
+    fill(scratch_.data());
+    writeLine(scratch_.data());
+  }
 
   void finish();
 
@@ -83,6 +100,14 @@ class EnviWriter {
   // Direct mode: writes whole blocks at `offset` (run on the background thread).
   void writeBlocks(const std::byte* bytes, std::size_t size, std::size_t offset);
   void abandon() noexcept;
+  // Throws if no further line may be written.
+  void checkLineAllowed() const;
+  // Direct mode: room for one more line in the staging buffer (after a flush
+  // if needed); commitStagedLine() counts the bytes put there.
+  std::byte* stagedLineSlot();
+  void commitStagedLine();
+  // The slot as floats when the file takes them as they are, else nullptr.
+  float* reserveStagedLine();
 
   std::filesystem::path hdr_path_;
   std::filesystem::path data_path_;
@@ -96,9 +121,11 @@ class EnviWriter {
   bool finished_ = false;
   std::vector<std::byte> encoded_;
   std::vector<float> pixel_major_;
+  std::vector<float> scratch_;  // writeLineWith() when the staging buffer cannot take floats
   // Direct mode: block-aligned staging buffer, bytes in it, file offset of its
   // start; the other buffer, being written by `pending_write_`.
   bool direct_ = false;
+  bool floats_in_place_ = false;  // direct, BIL, float32, native byte order
   std::unique_ptr<std::byte, void (*)(void*)> staging_{nullptr, nullptr};
   std::unique_ptr<std::byte, void (*)(void*)> writing_{nullptr, nullptr};
   std::future<void> pending_write_;

@@ -1,8 +1,10 @@
 #include "core/io/envi_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -195,6 +197,53 @@ TEST(EnviWriter, DirectModeWritesTheSameBytesAsBuffered) {
     EXPECT_TRUE(a == b) << "interleave " << int(interleave)
                         << (direct.direct() ? ", O_DIRECT" : ", buffered fallback");
     EXPECT_EQ(TempFolder::read(dir / "buffered.hdr"), TempFolder::read(dir / "direct.hdr"));
+  }
+}
+
+TEST(EnviWriter, LinesFilledInPlaceAreTheSameBytesAsWrittenLines) {
+  // writeLineWith() fills the staging buffer itself where the file takes
+  // floats as they are (direct, BIL, native float32) and a scratch line
+  // otherwise; either way the file must match writeLine()'s, NaN included.
+  // 300 lines of 997 x 37 floats span several 32 MB chunks.
+  TempFolder dir;
+  struct Case {
+    EnviInterleave interleave;
+    EnviDataType type;
+    int byte_order;  // 0 little, 1 big endian
+    EnviWriteMode mode;
+  };
+  const Case cases[] = {
+      {EnviInterleave::bil, EnviDataType::float32, 0, EnviWriteMode::direct},
+      {EnviInterleave::bil, EnviDataType::float32, 1, EnviWriteMode::direct},
+      {EnviInterleave::bip, EnviDataType::float32, 0, EnviWriteMode::direct},
+      {EnviInterleave::bil, EnviDataType::int16, 0, EnviWriteMode::direct},
+      {EnviInterleave::bsq, EnviDataType::float32, 0, EnviWriteMode::buffered},
+  };
+  for (const Case& c : cases) {
+    EnviHeader header;
+    header.samples = 997;
+    header.bands = 37;
+    header.lines = 300;
+    header.data_type = c.type;
+    header.byte_order = c.byte_order;
+    header.interleave = c.interleave;
+    EnviWriter written(dir / "written.hdr", header, c.mode);
+    EnviWriter filled(dir / "filled.hdr", header, c.mode);
+    std::vector<float> line(std::size_t(header.samples) * header.bands);
+    for (int l = 0; l < header.lines; ++l) {
+      for (std::size_t i = 0; i < line.size(); ++i) line[i] = float(l) * 1e-3f + float(i % 5000) - 2000.0f;
+      line[std::size_t(l) % line.size()] = std::numeric_limits<float>::quiet_NaN();
+      written.writeLine(line.data());
+      filled.writeLineWith([&](float* out) { std::copy(line.begin(), line.end(), out); });
+    }
+    EXPECT_THROW(filled.writeLineWith([](float*) {}), std::logic_error);
+    written.finish();
+    filled.finish();
+    const std::string a = TempFolder::read(dir / "written.raw");
+    const std::string b = TempFolder::read(dir / "filled.raw");
+    ASSERT_EQ(a.size(), std::size_t(header.lines) * line.size() * bytesPerValue(c.type));
+    EXPECT_TRUE(a == b) << "interleave " << int(c.interleave) << ", type " << int(c.type) << ", byte order "
+                        << c.byte_order << (filled.direct() ? ", O_DIRECT" : ", buffered");
   }
 }
 
