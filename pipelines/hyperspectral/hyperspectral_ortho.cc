@@ -16,7 +16,6 @@
 
 #include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
-#include "core/io/float_transpose.h"
 #include "pipelines/hyperspectral/spectrum_validity.h"
 #include "core/io/ply_io.h"
 #include "core/util/input_error.h"
@@ -267,7 +266,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
     // (sequential) from one, batch i + 1 is read, cast and prepared into the
     // other (pipelined, see below).
     struct BatchSlot {
-      std::vector<std::vector<float>> band_major, sample_major;
+      std::vector<std::vector<float>> sample_major;  // lines read pixel-major
       std::vector<std::vector<Eigen::Vector2d>> col_row;
       // Per sample: 0 no hit, 1 valid, 2 non-finite, 3 ignore value.
       std::vector<std::vector<std::uint8_t>> status, non_finite, ignored;
@@ -278,14 +277,12 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
     };
     BatchSlot slots[2];
     for (BatchSlot& slot : slots) {
-      slot.band_major.assign(batch, std::vector<float>(line_values));
       slot.sample_major.assign(batch, std::vector<float>(line_values));
       slot.col_row.assign(batch, std::vector<Eigen::Vector2d>(std::size_t(samples)));
       slot.status.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
       slot.non_finite.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
       slot.ignored.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
     }
-    std::vector<float> row_out(line_values > 0 ? std::size_t(bands) * grid.cols : 0);
     std::vector<float> ancillary_out(std::size_t(4) * grid.cols);
     // Two accumulators, each reset for every other tile (their memory is
     // mapped once): while one tile is cast and accumulated, the previous one
@@ -336,7 +333,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
             [&] {
               const auto start = Clock::now();
               for (std::size_t k = 0; k < count; ++k) {
-                cube.readLine(int(slot.lines[k]), slot.band_major[k].data());
+                cube.readLinePixelMajor(int(slot.lines[k]), slot.sample_major[k].data());
               }
               read_s += secondsSince(start);
             },
@@ -347,11 +344,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
             });
         const auto start = Clock::now();
         tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) {
-          const float* in = slot.band_major[k].data();
-          // Spectra made contiguous for the accumulator (blocked SSE transpose,
-          // float_transpose.h; the element-by-element loop was the costliest step).
-          transposeFloats(in, std::size_t(bands), std::size_t(samples), std::size_t(samples),
-                          slot.sample_major[k].data(), std::size_t(bands));
+          const float* in = slot.sample_major[k].data();
           std::uint8_t* non_finite = slot.non_finite[k].data();
           std::uint8_t* ignored = slot.ignored[k].data();
           markInvalidSamples(in, bands, samples, ignore, non_finite, ignored);
@@ -418,9 +411,12 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
       writing = std::async(std::launch::async, [&, row_begin, row_end]() {
         const auto start = Clock::now();
         for (int row = row_begin; row < row_end; ++row) {
-          tile.spectraRow(row, row_out.data());
-          ortho_writer.writeLine(row_out.data());
-          if (quicklook) quicklook->addRow(row, row_out.data());
+          // Straight into the writer's staging buffer where it can take the
+          // floats (a copy of every byte of the ortho-image saved).
+          ortho_writer.writeLineWith([&](float* line) {
+            tile.spectraRow(row, line);
+            if (quicklook) quicklook->addRow(row, line);
+          });
           tile.ancillaryRow(row, ancillary_out.data());
           ancillary_writer.writeLine(ancillary_out.data());
         }

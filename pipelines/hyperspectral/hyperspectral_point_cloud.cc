@@ -14,7 +14,6 @@
 #include <tbb/parallel_invoke.h>
 
 #include "core/io/envi_ignore_value.h"
-#include "core/io/float_transpose.h"
 #include "pipelines/hyperspectral/spectrum_validity.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
@@ -37,7 +36,7 @@ enum : std::uint8_t { kNoHit = 0, kValid = 1, kNonFinite = 2, kIgnored = 3 };
 
 // One batch of lines: read, cast and checked while the previous one is binned.
 struct BatchSlot {
-  std::vector<std::vector<float>> band_major, sample_major;
+  std::vector<std::vector<float>> sample_major;  // lines read pixel-major
   std::vector<std::vector<std::uint8_t>> status, non_finite, ignored;
   std::vector<ScanLineHits> hits;
   std::vector<std::int64_t> lines;
@@ -155,7 +154,6 @@ HyperspectralPointCloudReport writeHyperspectralPointCloud(const EnviReader& cub
     const std::size_t line_values = std::size_t(bands) * std::size_t(samples);
     BatchSlot slots[2];
     for (BatchSlot& slot : slots) {
-      slot.band_major.assign(batch, std::vector<float>(line_values));
       slot.sample_major.assign(batch, std::vector<float>(line_values));
       slot.status.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
       slot.non_finite.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
@@ -168,7 +166,7 @@ HyperspectralPointCloudReport writeHyperspectralPointCloud(const EnviReader& cub
       tbb::parallel_invoke(
           [&] {
             const auto start = Clock::now();
-            for (std::size_t k = 0; k < slot.count; ++k) cube.readLine(int(slot.lines[k]), slot.band_major[k].data());
+            for (std::size_t k = 0; k < slot.count; ++k) cube.readLinePixelMajor(int(slot.lines[k]), slot.sample_major[k].data());
             read_s += since(start);
           },
           [&] {
@@ -178,10 +176,7 @@ HyperspectralPointCloudReport writeHyperspectralPointCloud(const EnviReader& cub
           });
       const auto start = Clock::now();
       tbb::parallel_for(std::size_t(0), slot.count, [&](std::size_t k) {
-        const float* in = slot.band_major[k].data();
-        // Spectra made contiguous (as the ortho-image does: float_transpose.h).
-        transposeFloats(in, std::size_t(bands), std::size_t(samples), std::size_t(samples),
-                        slot.sample_major[k].data(), std::size_t(bands));
+        const float* in = slot.sample_major[k].data();
         std::uint8_t* non_finite = slot.non_finite[k].data();
         std::uint8_t* ignored = slot.ignored[k].data();
         markInvalidSamples(in, bands, samples, ignore, non_finite, ignored);
@@ -229,7 +224,7 @@ HyperspectralPointCloudReport writeHyperspectralPointCloud(const EnviReader& cub
     stage.stop();
     timings.record("  read cube (overlaps cast)", read_s);
     timings.record("  cast", cast_s);
-    timings.record("  transpose + check", check_s);
+    timings.record("  check spectra", check_s);
     timings.record("  bin + write points (overlaps the next batch)", bin_s);
   }
   {

@@ -8,18 +8,21 @@
 
 namespace hsmap {
 
-void markInvalidSamples(const float* band_major, int bands, int samples, std::optional<float> ignore,
+void markInvalidSamples(const float* pixel_major, int bands, int samples, std::optional<float> ignore,
                         std::uint8_t* non_finite, std::uint8_t* ignored) {
-  std::fill(non_finite, non_finite + samples, std::uint8_t(0));
-  std::fill(ignored, ignored + samples, std::uint8_t(0));
   constexpr float kMax = std::numeric_limits<float>::max();
-  for (int b = 0; b < bands; ++b) {
-    const float* row = band_major + std::size_t(b) * std::size_t(samples);
-    for (int s = 0; s < samples; ++s) non_finite[s] |= std::uint8_t(!(std::fabs(row[s]) <= kMax));
+  for (int s = 0; s < samples; ++s) {
+    const float* spectrum = pixel_major + std::size_t(s) * std::size_t(bands);
+    // Reductions without early exit, so the loops vectorise.
+    bool bad = false;
+    for (int b = 0; b < bands; ++b) bad |= !(std::fabs(spectrum[b]) <= kMax);
+    bool skip = false;
     if (ignore) {
       const float value = *ignore;
-      for (int s = 0; s < samples; ++s) ignored[s] |= std::uint8_t(row[s] == value);
+      for (int b = 0; b < bands; ++b) skip |= spectrum[b] == value;
     }
+    non_finite[s] = std::uint8_t(bad);
+    ignored[s] = std::uint8_t(skip);
   }
 }
 

@@ -14,10 +14,10 @@
 
 namespace hsmap {
 
-// `band_major`: one line as read from the cube, bands x samples (band by
-// band). Writes one flag per sample into non_finite and ignored (1 = yes).
-// Band by band over the line, so the inner loops vectorise.
-void markInvalidSamples(const float* band_major, int bands, int samples, std::optional<float> ignore,
+// `pixel_major`: one line as EnviReader::readLinePixelMajor gives it, samples
+// x bands (each sample's spectrum contiguous). Writes one flag per sample
+// into non_finite and ignored (1 = yes).
+void markInvalidSamples(const float* pixel_major, int bands, int samples, std::optional<float> ignore,
                         std::uint8_t* non_finite, std::uint8_t* ignored);
 
 // The inputs every product cast from the cube needs to agree on: one
