@@ -5,8 +5,12 @@
 #   cat SURVEY/uhi/cube.raw > /dev/null                 (timed: the read floor, in this run)
 #   hsmap run SURVEY --out RUN --from products --force  (under /usr/bin/time -v)
 # and prints one Markdown table: scan lines, the products stage's time
-# (run.yaml), scan lines per second, the ratio of the stage's time to cat's,
-# the process's peak memory (time -v) and the ortho-image's size on disk.
+# (run.yaml), the ray casting plus ortho-image alone (the stage's report:
+# footprint cast + ortho tiles, i.e. cast, read, accumulate, fill and write
+# ENVI; without the mesh's BVH, the quick-look, the RGB ortho-image, the
+# point cloud and the GeoTIFF), scan lines per second of each, the ratio of
+# the stage's time to cat's, the process's peak memory (time -v) and the
+# ortho-image's size on disk.
 # The stage's own report (HyperspectralReport::summary, with the time of
 # each step) is in RUN.products.log.
 #
@@ -28,8 +32,8 @@ read -r -a products_args <<<"${PRODUCTS_ARGS:-}"
 
 seconds_now() { date +%s.%N; }
 
-echo "| survey | repeat | scan lines | products stage (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| survey | repeat | scan lines | products stage (s) | lines/s | cast + ortho (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for survey in "${surveys[@]}"; do
   name=$(basename "$survey")
   run="$work/hsmap_products_$name"
@@ -50,11 +54,15 @@ for survey in "${surveys[@]}"; do
     fi
     lines=$(grep -ohE "scan lines: [0-9]+ cast" "$run.products.log" "$run.products.time" 2>/dev/null |
             head -1 | grep -oE "[0-9]+" || true)
+    # "time: footprint cast A s; ortho tiles B s; ..." in the stage's report.
+    cast_ortho_s=$(grep -oE "footprint cast [0-9.eE+-]+ s; ortho tiles [0-9.eE+-]+ s" "$run.products.log" |
+                   head -1 | awk '{print $3 + $7}' || true)
     peak_kb=$(grep "Maximum resident set size" "$run.products.time" | awk '{print $NF}')
     ortho_bytes=$(stat -c %s "$run/hyperspectral/ortho.raw" 2>/dev/null || echo 0)
-    awk -v survey="$name" -v repeat="$repeat" -v lines="${lines:-0}" -v stage="$stage_s" -v cat_s="$cat_s" \
+    awk -v survey="$name" -v repeat="$repeat" -v lines="${lines:-0}" -v stage="$stage_s" -v cast_ortho="${cast_ortho_s:-0}" -v cat_s="$cat_s" \
         -v peak="$peak_kb" -v bytes="$ortho_bytes" 'BEGIN {
-      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f |\n", survey, repeat, lines, stage,
-             (stage > 0 ? lines / stage : 0), cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9 }'
+      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f |\n", survey, repeat, lines,
+             stage, (stage > 0 ? lines / stage : 0), cast_ortho, (cast_ortho > 0 ? lines / cast_ortho : 0),
+             cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9 }'
   done
 done
