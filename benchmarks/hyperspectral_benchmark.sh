@@ -5,12 +5,15 @@
 #   cat SURVEY/uhi/cube.raw > /dev/null                 (timed: the read floor, in this run)
 #   hsmap run SURVEY --out RUN --from products --force  (under /usr/bin/time -v)
 # and prints one Markdown table: scan lines, the products stage's time
-# (run.yaml), the ray casting plus ortho-image alone (the stage's report:
-# footprint cast + ortho tiles, i.e. cast, read, accumulate, fill and write
-# ENVI; without the mesh's BVH, the quick-look, the RGB ortho-image, the
-# point cloud and the GeoTIFF), scan lines per second of each, the ratio of
-# the stage's time to cat's, the process's peak memory (time -v) and the
-# ortho-image's size on disk.
+# (run.yaml), the ray casting plus ortho-image alone (from the stage's log:
+# reading the mesh and building its BVH, the footprint cast and the ortho
+# tiles, i.e. cast, read, accumulate, fill and write ENVI; without the
+# quick-look, the RGB ortho-image, the point cloud and the GeoTIFF), scan lines per second of each, the ratio of
+# the stage's time to cat's, the process's peak memory (time -v), the
+# ortho-image's size on disk and the disk's write speed in the same repeat
+# (the cube, in the page cache after the cat, copied with dd oflag=direct to
+# a file beside the run and deleted; the ortho-image is written the same
+# way, so its size over this speed is the stage's floor on this disk).
 # The stage's own report (HyperspectralReport::summary, with the time of
 # each step) is in RUN.products.log.
 #
@@ -32,8 +35,8 @@ read -r -a products_args <<<"${PRODUCTS_ARGS:-}"
 
 seconds_now() { date +%s.%N; }
 
-echo "| survey | repeat | scan lines | products stage (s) | lines/s | cast + ortho (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| survey | repeat | scan lines | products stage (s) | lines/s | mesh + cast + ortho (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) | disk write (GB/s) | ortho.raw at that speed (s) |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for survey in "${surveys[@]}"; do
   name=$(basename "$survey")
   run="$work/hsmap_products_$name"
@@ -41,9 +44,21 @@ for survey in "${surveys[@]}"; do
     "$hsmap" run "$survey" --out "$run" --until surface >"$run.surface.log" 2>&1
   fi
   for ((repeat = 1; repeat <= repeats; ++repeat)); do
+    # The previous repeat's products go first, untimed: --force would delete
+    # them inside the run, and freeing a 15 GB ortho-image (on a file system
+    # mounted with `discard`, trimming its blocks) slows the writes that
+    # follow for seconds. A user's run writes into a fresh folder.
+    rm -rf "$run/hyperspectral"
+    sync
     start=$(seconds_now)
     cat "$survey/uhi/cube.raw" >/dev/null
     cat_s=$(awk -v a="$start" -v b="$(seconds_now)" 'BEGIN { print b - a }')
+    start=$(seconds_now)
+    dd if="$survey/uhi/cube.raw" of="$run.write_speed" bs=32M oflag=direct status=none
+    cube_bytes=$(stat -c %s "$survey/uhi/cube.raw")
+    write_gb_s=$(awk -v a="$start" -v b="$(seconds_now)" -v n="$cube_bytes" 'BEGIN { print n / 1e9 / (b - a) }')
+    rm -f "$run.write_speed"
+    sync
     /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products --force "${products_args[@]}" \
       >"$run.products.log" 2>"$run.products.time"
     # The stage's time from the run record, else the whole process's.
@@ -54,15 +69,19 @@ for survey in "${surveys[@]}"; do
     fi
     lines=$(grep -ohE "scan lines: [0-9]+ cast" "$run.products.log" "$run.products.time" 2>/dev/null |
             head -1 | grep -oE "[0-9]+" || true)
-    # "time: footprint cast A s; ortho tiles B s; ..." in the stage's report.
+    # "products: mesh read and its BVH built in M s" and "time: footprint cast
+    # A s; ortho tiles B s; ..." in the stage's log.
+    mesh_s=$(grep -oE "mesh read and its BVH built in [0-9.eE+-]+ s" "$run.products.log" |
+             head -1 | awk '{print $(NF - 1)}' || true)
     cast_ortho_s=$(grep -oE "footprint cast [0-9.eE+-]+ s; ortho tiles [0-9.eE+-]+ s" "$run.products.log" |
-                   head -1 | awk '{print $3 + $7}' || true)
+                   head -1 | awk -v mesh="${mesh_s:-0}" '{print mesh + $3 + $7}' || true)
     peak_kb=$(grep "Maximum resident set size" "$run.products.time" | awk '{print $NF}')
     ortho_bytes=$(stat -c %s "$run/hyperspectral/ortho.raw" 2>/dev/null || echo 0)
     awk -v survey="$name" -v repeat="$repeat" -v lines="${lines:-0}" -v stage="$stage_s" -v cast_ortho="${cast_ortho_s:-0}" -v cat_s="$cat_s" \
-        -v peak="$peak_kb" -v bytes="$ortho_bytes" 'BEGIN {
-      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f |\n", survey, repeat, lines,
-             stage, (stage > 0 ? lines / stage : 0), cast_ortho, (cast_ortho > 0 ? lines / cast_ortho : 0),
-             cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9 }'
+        -v peak="$peak_kb" -v bytes="$ortho_bytes" -v write_gb_s="$write_gb_s" 'BEGIN {
+      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f | %.2f | %.1f |\n", survey, repeat,
+             lines, stage, (stage > 0 ? lines / stage : 0), cast_ortho, (cast_ortho > 0 ? lines / cast_ortho : 0),
+             cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9, write_gb_s,
+             (write_gb_s > 0 ? bytes / 1e9 / write_gb_s : 0) }'
   done
 done

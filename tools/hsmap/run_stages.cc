@@ -294,6 +294,7 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   out << "products: scan line poses from " << lines_csv.string() << ", surface from "
       << mesh_ply.string() << "\n";
   const std::vector<LinePose> line_poses = readLinePoseTable(lines_csv);
+  const auto mesh_start = std::chrono::steady_clock::now();
   const PlyMesh ply = readSurfaceMesh(mesh_ply);
   const UtmProjection projection(survey.origin);
   const bool refine = options.variant == "sequential" && options.extrinsic_rounds > 0;
@@ -302,6 +303,9 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   // With a refinement to follow, the GeoTIFF is exported once, from the
   // last cast's ENVI ortho-image.
   const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  out << "products: mesh read and its BVH built in "
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count() << " s ("
+      << ply.triangles.size() << " triangles)\n";
   // The point cloud from the final line poses: after the refinement's last
   // cast when one follows (the joint stage writes it again each round).
   HyperspectralReport report =
