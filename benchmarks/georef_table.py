@@ -11,11 +11,7 @@ alignment. Used by benchmarks/georef_benchmark.sh.
 import json
 import sys
 
-
-def cell(value, scale=1.0, digits=1, unit=""):
-    if value is None:
-        return "n/a"
-    return f"{value * scale:.{digits}f}{unit}"
+from table_cells import cell
 
 
 print("| survey | variant | rgb_ate_m | INS floor | rgb_ate_aligned_m | rgb_scale_error | INS floor | "

@@ -10,13 +10,13 @@ accuracy, and the run's wall time and peak memory when given. A metric the
 evaluation left null shows "null". Used by benchmarks/variants_benchmark.sh.
 """
 import json
+import functools
 import sys
 
+import table_cells
 
-def cell(value, scale=1.0, digits=1, unit=""):
-    if value is None:
-        return "null"
-    return f"{value * scale:.{digits}f}{unit}"
+# A metric the evaluation left out is null in metrics.json: say so.
+cell = functools.partial(table_cells.cell, missing="null")
 
 
 print("| survey | variant | T_C_U rotation error | translation error | d error | ortho_registration_rmse_m | "
