@@ -50,7 +50,12 @@ struct FrontendOptions {
   int min_corners = 40;
 
   // ---- tracking (KLT) --------------------------------------------------------
-  int klt_window_px = 15;           // square window at the reference width; odd, >= 9 after scaling
+  // Square window at the reference width; odd, >= 9 after scaling. Small:
+  // light fixed in the image (lamps, CLAHE's tiles) pulls a window back by a
+  // little every frame, the more the larger it is, and the bundle
+  // adjustments turn that into a scale drifting along the track (docs/FRONTEND.md,
+  // "Window size").
+  int klt_window_px = 9;
   int klt_pyramid_levels = 3;       // levels above the full image
   int klt_max_iterations = 10;
   double klt_epsilon = 0.03;        // pixel change that ends a KLT iteration
