@@ -19,6 +19,8 @@ import sys
 
 import numpy as np
 
+from frontend_accuracy import umeyama
+
 
 def read_positions(path):
     with open(path, newline="") as f:
@@ -26,18 +28,6 @@ def read_positions(path):
     if not rows or not {"t", "x", "y", "z"} <= set(rows[0]):
         sys.exit(f"trajectory_bend.py: {path}: expected a CSV with columns t, x, y, z")
     return {round(float(r["t"]), 4): [float(r[c]) for c in "xyz"] for r in rows if r.get("posed", "1") == "1"}
-
-
-def umeyama(source, target):
-    mu_s, mu_t = source.mean(axis=0), target.mean(axis=0)
-    xs, xt = source - mu_s, target - mu_t
-    U, D, Vt = np.linalg.svd(xt.T @ xs / len(source))
-    E = np.eye(3)
-    if np.linalg.det(U) * np.linalg.det(Vt) < 0:
-        E[2, 2] = -1
-    R = U @ E @ Vt
-    s = np.trace(np.diag(D) @ E) / ((xs ** 2).sum() / len(source))
-    return s, R, mu_t - s * R @ mu_s
 
 
 def main():

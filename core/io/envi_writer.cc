@@ -72,11 +72,11 @@ EnviWriter::EnviWriter(const std::filesystem::path& hdr_path, EnviHeader header,
     throw std::runtime_error("cannot write " + partial_path_.string() + ": " + std::strerror(error));
   }
   const std::size_t line_values = static_cast<std::size_t>(header_.samples) * header_.bands;
+  line_bytes_ = line_values * value_bytes_;
   if (direct_) {
     // Room for a chunk plus one line and the partial block kept over.
-    const std::size_t line_bytes = line_values * value_bytes_;
     staging_capacity_ =
-        (kDirectChunk + line_bytes + 2 * kDirectAlignment) / kDirectAlignment * kDirectAlignment;
+        (kDirectChunk + line_bytes_ + 2 * kDirectAlignment) / kDirectAlignment * kDirectAlignment;
     staging_ = {static_cast<std::byte*>(std::aligned_alloc(kDirectAlignment, staging_capacity_)), std::free};
     writing_ = {static_cast<std::byte*>(std::aligned_alloc(kDirectAlignment, staging_capacity_)), std::free};
     if (!staging_ || !writing_) {
@@ -179,13 +179,12 @@ void EnviWriter::checkLineAllowed() const {
 
 std::byte* EnviWriter::stagedLineSlot() {
   // Appended to the staging buffer (BIL/BIP lines are consecutive).
-  const std::size_t line_bytes = static_cast<std::size_t>(header_.samples) * header_.bands * value_bytes_;
-  if (staged_ + line_bytes > staging_capacity_) flushStagedBlocks();
+  if (staged_ + line_bytes_ > staging_capacity_) flushStagedBlocks();
   return staging_.get() + staged_;
 }
 
 void EnviWriter::commitStagedLine() {
-  staged_ += static_cast<std::size_t>(header_.samples) * header_.bands * value_bytes_;
+  staged_ += line_bytes_;
   if (staged_ >= kDirectChunk) flushStagedBlocks();
   ++lines_written_;
 }
@@ -202,7 +201,6 @@ void EnviWriter::writeLine(const float* band_major_line) {
   const std::size_t samples = static_cast<std::size_t>(header_.samples);
   const std::size_t bands = static_cast<std::size_t>(header_.bands);
   const std::size_t line_values = samples * bands;
-  const std::size_t line_bytes = line_values * value_bytes_;
   const std::size_t line = static_cast<std::size_t>(lines_written_);
   const std::size_t offset = header_.header_offset;
 
@@ -221,12 +219,12 @@ void EnviWriter::writeLine(const float* band_major_line) {
   switch (header_.interleave) {
     case EnviInterleave::bil:
       encodeSamples(header_.data_type, swap_bytes_, band_major_line, encoded_.data(), line_values);
-      writeAt(encoded_.data(), line_bytes, offset + line * line_bytes);
+      writeAt(encoded_.data(), line_bytes_, offset + line * line_bytes_);
       break;
     case EnviInterleave::bip:
       transposeFloats(band_major_line, bands, samples, samples, pixel_major_.data(), bands);
       encodeSamples(header_.data_type, swap_bytes_, pixel_major_.data(), encoded_.data(), line_values);
-      writeAt(encoded_.data(), line_bytes, offset + line * line_bytes);
+      writeAt(encoded_.data(), line_bytes_, offset + line * line_bytes_);
       break;
     case EnviInterleave::bsq: {
       encodeSamples(header_.data_type, swap_bytes_, band_major_line, encoded_.data(), line_values);

@@ -117,6 +117,7 @@ class EnviWriter {
   int fd_ = -1;
   bool swap_bytes_ = false;
   std::size_t value_bytes_ = 0;
+  std::size_t line_bytes_ = 0;  // samples * bands * value_bytes_
   int lines_written_ = 0;
   bool finished_ = false;
   std::vector<std::byte> encoded_;
