@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Geo-referencing on simulated surveys: for each SURVEY runs
-#   hsmap run SURVEY --variant sequential           (front-end + georef)
-#   hsmap run SURVEY --variant sequential --from georef --force
+#   hsmap run SURVEY --variant sequential --until georef   (front-end + georef)
+#   hsmap run SURVEY --variant sequential --from georef --until georef --force
 #                                                   (georef alone, under /usr/bin/time -v)
-#   hsmap run SURVEY --variant planar
+#   hsmap run SURVEY --variant planar --until georef
 #   hsmap evaluate RUN --truth SURVEY/truth         (both runs)
 # and prints a Markdown table of every trajectory metric per survey and
 # variant, beside the floor the INS allows (metrics.json's ins_floor_*), and
@@ -24,9 +24,9 @@ for survey in "${surveys[@]}"; do
   for variant in sequential planar; do
     run="$work/hsmap_georef_${name}_${variant}"
     rm -rf "$run"
-    "$hsmap" run "$survey" --out "$run" --variant "$variant" >"$run.log" 2>&1
+    "$hsmap" run "$survey" --out "$run" --variant "$variant" --until georef >"$run.log" 2>&1
     if [[ $variant == sequential ]]; then
-      /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from georef --force \
+      /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from georef --until georef --force \
         >"$run.georef.log" 2>"$run.georef.time"
       wall=$(grep "Elapsed (wall clock)" "$run.georef.time" | awk '{print $NF}')
       rss_kb=$(grep "Maximum resident set size" "$run.georef.time" | awk '{print $NF}')
