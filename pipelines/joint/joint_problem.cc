@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -53,7 +54,31 @@ struct FrameObservationUse {
   double t;
   int landmark;
   Eigen::Vector2d pixel;
+  bool keyframe;
 };
+
+// What frame `frame` saw: a keyframe's observations in the map (those of its
+// own pose plus the sightings recorded from a track's detection, which the
+// front-end's per-frame list lacks because the landmark did not exist yet),
+// otherwise the frame's tracked landmarks.
+bool isKeyframeOfMap(const FrameRecord& frame, const JointInputs& in) {
+  return frame.keyframe && frame.keyframe_id >= 0 &&
+         std::size_t(frame.keyframe_id) < in.map_W->keyframes().size() &&
+         in.map_W->keyframe(frame.keyframe_id).frame_index == frame.index;
+}
+
+std::vector<FrameObservation> observationsSeenBy(const FrameRecord& frame, const JointInputs& in) {
+  std::vector<FrameObservation> seen;
+  if (isKeyframeOfMap(frame, in)) {
+    for (const KeyframeObservation& o : in.map_W->keyframe(frame.keyframe_id).observations) {
+      seen.push_back({frame.index, o.landmark_id, float(o.pixel.x()), float(o.pixel.y())});
+    }
+    return seen;
+  }
+  const std::span<const FrameObservation> tracked = in.frontend->observationsOfFrame(frame.index);
+  seen.assign(tracked.begin(), tracked.end());
+  return seen;
+}
 
 }  // namespace
 
@@ -61,7 +86,8 @@ std::string JointResult::summary() const {
   std::ostringstream out;
   out << "joint problem: " << spline.numControlPoints() << " spline control points (knots every "
       << spline.dt() << " s), " << landmarks_W.size() << " landmarks, " << frames << " frames\n"
-      << "  factors: " << reprojection_factors << " reprojections (" << gated_observations
+      << "  factors: " << reprojection_factors << " reprojections (" << keyframe_reprojection_factors
+      << " of keyframes, " << gated_observations
       << " observations beyond the start gate left out), " << ins_position_factors
       << " INS positions, " << ins_attitude_factors << " INS attitudes, " << tie_inliers
       << " tie points (" << tie_outliers << " outliers removed, " << tie_points_outside_spline
@@ -130,7 +156,8 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     if (!inSpline(spline, t)) continue;
     const SE3d T_C_W = spline.pose(t).inverse();
     int used = 0;
-    for (const FrameObservation& o : in.frontend->observationsOfFrame(frame.index)) {
+    const bool is_keyframe = isKeyframeOfMap(frame, in);
+    for (const FrameObservation& o : observationsSeenBy(frame, in)) {
       if (o.landmark < 0 || std::size_t(o.landmark) >= in.map_W->landmarks().size()) continue;
       const Landmark& landmark = in.map_W->landmark(o.landmark);
       if (!landmark.valid) continue;
@@ -140,7 +167,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
         ++result.gated_observations;
         continue;
       }
-      observations.push_back({t, o.landmark, pixel});
+      observations.push_back({t, o.landmark, pixel, is_keyframe});
       ++seen_by[o.landmark];
       ++used;
     }
@@ -160,7 +187,9 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     values.insertPoint(L(std::uint64_t(id)), in.map_W->landmark(id).p_F);
   }
 
-  const NoiseModel pixel_noise = NoiseModel::isotropic(2, options.pixel_sigma_px);
+  const NoiseModel keyframe_pixel_noise = NoiseModel::isotropic(2, options.pixel_sigma_px);
+  const NoiseModel other_frame_pixel_noise =
+      NoiseModel::isotropic(2, options.pixel_sigma_px * options.other_frame_sigma_factor);
   const RobustLoss huber = RobustLoss::huber(options.huber_sigmas);
   const InsNoise& ins_noise = in.ins_noise;
   const NoiseModel position_noise = NoiseModel::fromSigmas(
@@ -186,13 +215,15 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
 
   auto buildGraph = [&](const std::vector<bool>& keep_tie, std::vector<std::size_t>* tie_factor_index) {
     FactorGraph graph;
-    result.reprojection_factors = result.ins_position_factors = result.ins_attitude_factors = 0;
-    result.smoothness_factors = 0;
+    result.reprojection_factors = result.keyframe_reprojection_factors = 0;
+    result.ins_position_factors = result.ins_attitude_factors = result.smoothness_factors = 0;
     for (const FrameObservationUse& o : observations) {
       if (!values.contains(L(std::uint64_t(o.landmark)))) continue;
-      graph.emplace<SplineReprojectionFactor>(timing, o.t, L(std::uint64_t(o.landmark)), o.pixel,
-                                              in.rgb_camera, pixel_noise, huber);
+      graph.emplace<SplineReprojectionFactor>(
+          timing, o.t, L(std::uint64_t(o.landmark)), o.pixel, in.rgb_camera,
+          o.keyframe ? keyframe_pixel_noise : other_frame_pixel_noise, huber);
       ++result.reprojection_factors;
+      if (o.keyframe) ++result.keyframe_reprojection_factors;
     }
     const std::vector<InsBodyFix>& fixes = in.ins->fixes();
     for (std::size_t k = 0; k < fixes.size(); ++k) {

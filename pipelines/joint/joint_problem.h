@@ -10,7 +10,13 @@
 //   - every posed frame's observations of the landmarks
 //     (SplineReprojectionFactor at the frame's time; Huber loss): the
 //     front-end tracked them in every frame, not only in keyframes, so the
-//     spline is determined between keyframes by the video itself;
+//     spline is determined between keyframes by the video itself. A
+//     keyframe's observations are the map's (the keyframe adjustment's set,
+//     with each track's sighting at its detection); the other frames' are
+//     weighted `other_frame_sigma_factor` times less in sigma, because a
+//     track's pixels in consecutive frames share its accumulated KLT drift
+//     and its early life (detection to triangulation) is missing from them
+//     (docs/JOINT.md, "Weights");
 //   - every INS fix on the spline at its own time (SplineInsPositionFactor,
 //     SplineInsAttitudeFactor) with the noise of the geo-referencing stage
 //     (survey.yaml's sigmas, positions inflated by the INS's correlation
@@ -59,7 +65,9 @@
 namespace hsmap {
 
 struct JointOptions {
-  double pixel_sigma_px = 1.0;
+  double pixel_sigma_px = 1.0;  // a keyframe's observations
+  // The other posed frames' observations: sigma = pixel_sigma_px times this.
+  double other_frame_sigma_factor = 5.0;
   double huber_sigmas = 2.0;
   // An observation farther than this from its landmark's projection at the
   // start is left out (it was an outlier of the front-end's PnP).
@@ -127,6 +135,7 @@ struct JointResult {
 
   int frames = 0;
   int reprojection_factors = 0;
+  int keyframe_reprojection_factors = 0;  // of them, a keyframe's (at pixel_sigma_px)
   int gated_observations = 0;  // left out at the start (start_gate_px)
   int ins_position_factors = 0;
   int ins_attitude_factors = 0;

@@ -37,6 +37,8 @@ struct ReducedSurvey {
 
 // `steady`: constant attitude and every tie point at the same range (a flat
 // seabed flown level), the case that leaves T_C_U and d weakly observed.
+constexpr std::size_t kKeyframeEvery = 4;
+
 ReducedSurvey makeSurvey(unsigned seed, bool steady = false) {
   test::TransectConfig config;
   config.seed = seed;
@@ -51,19 +53,32 @@ ReducedSurvey makeSurvey(unsigned seed, bool steady = false) {
   survey.transect = test::makeTransect(config);
   const test::Transect& t = survey.transect;
 
+  // Every 4th frame is a keyframe of the map. Its observations are the
+  // map's; the front-end's per-frame list holds only those of even
+  // landmarks, as it lacks a track's early life (the joint problem must take
+  // a keyframe's observations from the map).
+  for (const Eigen::Vector3d& p : t.start_p_W) survey.map.addLandmark(0, p);
   for (std::size_t k = 0; k < t.keyframe_times.size(); ++k) {
     FrameRecord record;
     record.index = int(k);
     record.t = t.keyframe_times[k];
     record.posed = true;
+    if (k % kKeyframeEvery == 0) {
+      record.keyframe = true;
+      record.keyframe_id = survey.map.addKeyframe(int(k), record.t, 0, t.start_T_W_C[k]);
+    }
     survey.frontend.frames.push_back(record);
     survey.frame_times.push_back(t.keyframe_times[k]);
   }
   for (const test::PixelObservation& o : t.observations) {
+    const FrameRecord& frame = survey.frontend.frames[std::size_t(o.keyframe)];
+    if (frame.keyframe) {
+      survey.map.addObservation(frame.keyframe_id, o.landmark, o.pixel);
+      if (o.landmark % 2 != 0) continue;
+    }
     survey.frontend.frame_observations.push_back(
         {o.keyframe, o.landmark, float(o.pixel.x()), float(o.pixel.y())});
   }
-  for (const Eigen::Vector3d& p : t.start_p_W) survey.map.addLandmark(0, p);
 
   std::vector<InsBodyFix> fixes;
   for (std::size_t k = 0; k < t.keyframe_times.size(); k += 20) {
@@ -131,6 +146,9 @@ JointInputs inputsOf(const ReducedSurvey& survey) {
 JointOptions testOptions() {
   JointOptions options;
   options.pixel_sigma_px = 0.5;
+  // The synthetic frames' pixels carry independent noise, not a track's
+  // shared KLT drift, so the other frames count as much as the keyframes.
+  options.other_frame_sigma_factor = 1.0;
   options.sigma_match_m = 0.3 / 1500.0 * 3.0;  // 0.3 px at 3 m
   options.num_threads = 2;
   return options;
@@ -175,6 +193,29 @@ TEST(JointProblem, RecoversExtrinsicAndTimeOffsetWithinTheirStatedSigma) {
     const double rms = std::sqrt((aligned - truth).colwise().squaredNorm().mean());
     EXPECT_LT(rms, 0.002);
   }
+}
+
+TEST(JointProblem, AKeyframesObservationsComeFromTheMapAndTheOtherFramesFromTheFrontEnd) {
+  const ReducedSurvey survey = makeSurvey(3);
+  JointOptions options = testOptions();
+  options.start_gate_px = 1e9;  // count every observation
+  options.max_iterations = 1;
+  const JointResult result = solveJointProblem(inputsOf(survey), options);
+  ASSERT_TRUE(result.solved) << result.summary();
+
+  std::size_t keyframe_observations = 0;
+  for (const Keyframe& keyframe : survey.map.keyframes()) keyframe_observations += keyframe.observations.size();
+  std::size_t other_frame_observations = 0;
+  for (const FrameObservation& o : survey.frontend.frame_observations) {
+    if (!survey.frontend.frames[std::size_t(o.frame)].keyframe) ++other_frame_observations;
+  }
+  ASSERT_GT(keyframe_observations, 0u);
+  // The keyframes' odd landmarks are only in the map: taken from the
+  // front-end's list, the keyframes would give half as many.
+  EXPECT_EQ(std::size_t(result.keyframe_reprojection_factors), keyframe_observations);
+  EXPECT_EQ(std::size_t(result.reprojection_factors - result.keyframe_reprojection_factors),
+            other_frame_observations);
+  EXPECT_EQ(result.frames, int(survey.frontend.frames.size()));
 }
 
 TEST(JointProblem, ASteadyFlightOverAFlatSeabedIsReportedWeaklyDetermined) {
