@@ -258,6 +258,19 @@ TEST_F(RunAndEvaluate, JointWithTooFewTiePointsKeepsTheSequentialResultAndSaysWh
   const std::string json = readText(joint / "metrics.json");
   EXPECT_GT(metric(json, "extrinsic_rotation_error_deg"), 0.5);  // the survey's 2 deg guess, kept
   EXPECT_GT(metric(json, "time_offset_error_s"), 0.005);         // and its 15 ms off d
+
+  // Had an earlier joint stage solved (calibration.yaml holds its d's
+  // 1-sigma), its surface and products would be in RUN: `--from joint` says
+  // that it starts from them, not from the sequential result.
+  RunCalibration solved = calibration;
+  solved.time_offset_sigma_s = 0.002;
+  writeRunCalibration(joint / "calibration.yaml", solved);
+  const RunResult again = run("joint", joint, tinySurvey(), " --from joint --force");
+  ASSERT_EQ(again.exit_status, 0) << again.err << again.out;
+  EXPECT_NE(again.out.find("warning: joint: the surface and products in " + joint.string() +
+                           " are an earlier joint stage's"),
+            std::string::npos)
+      << again.out;
 }
 
 TEST_F(RunAndEvaluate, StackedWritesTheLinesSideBySideAndScoresNothing) {

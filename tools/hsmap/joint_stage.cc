@@ -182,6 +182,15 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
   const UtmProjection projection(survey.origin);
   PlyMesh ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
   const fs::path calibration_yaml = options.out / results_paths::calibration_yaml;
+  // The joint stage rewrites the trajectory, the surface and the products:
+  // run again on a finished joint run (--from joint), it starts from that
+  // result (a warm start), not from the sequential one. Only a joint solve
+  // writes d's 1-sigma, so calibration.yaml tells which it is.
+  if (fs::exists(calibration_yaml) && readRunCalibration(calibration_yaml).time_offset_sigma_s) {
+    out << "warning: joint: the surface and products in " << options.out.string()
+        << " are an earlier joint stage's: this run starts from them, not from the sequential "
+           "result (--from georef starts again from it)\n";
+  }
   HyperspectralReport report;
   bool cast = false;
   // A lattice twice as dense as the sequential refinement's: T_C_U's
