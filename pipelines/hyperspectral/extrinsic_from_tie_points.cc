@@ -5,9 +5,11 @@
 #include <cstddef>
 #include <exception>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
+#include "core/geometry/pose_interpolation.h"
 #include "core/geometry/pushbroom_camera.h"
 #include "core/graph/factor_graph.h"
 #include "core/graph/key.h"
@@ -95,13 +97,26 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
   };
   std::vector<Tie> ties;
   std::int64_t without_line = 0;
+  // The UHI pose at the tie's continuous line position, interpolated between
+  // the two lines around it (both must be posed).
+  auto poseAt = [&](const ExtrinsicTiePoint& tie) -> std::optional<SE3d> {
+    if (!std::isfinite(tie.line_position)) return std::nullopt;
+    const double below = std::floor(tie.line_position);
+    const auto a = pose_of_line.find((long long)below);
+    if (a == pose_of_line.end()) return std::nullopt;
+    const double alpha = tie.line_position - below;
+    if (alpha == 0.0) return a->second->T;
+    const auto b = pose_of_line.find((long long)below + 1);
+    if (b == pose_of_line.end()) return std::nullopt;
+    return interpolatePose(a->second->T, b->second->T, alpha);
+  };
   for (const ExtrinsicTiePoint& tie : tie_points) {
-    const auto found = pose_of_line.find(tie.line);
-    if (found == pose_of_line.end() || !tie.p_W.allFinite() || !std::isfinite(tie.sample)) {
+    const std::optional<SE3d> T_W_U = poseAt(tie);
+    if (!T_W_U || !tie.p_W.allFinite() || !std::isfinite(tie.sample)) {
       ++without_line;
       continue;
     }
-    ties.push_back({&tie, found->second->T * T_U_C_lines});
+    ties.push_back({&tie, *T_W_U * T_U_C_lines});
   }
   if (without_line > 0) {
     result.warnings.push_back(std::to_string(without_line) +

@@ -10,7 +10,11 @@ namespace hsmap {
 
 // One association: UHI pixel (line, sample) saw the mesh point p_W.
 struct ExtrinsicTiePoint {
-  long long line = 0;
+  long long line = 0;  // the scan line nearest line_position
+  // Continuous line coordinate of the UHI pixel that saw p_W (the ancillary
+  // layer interpolated at the match): between two lines, the UHI saw p_W at
+  // a time between theirs.
+  double line_position = 0.0;
   double sample = 0.0;
   double range_m = 0.0;  // UHI range of the pixel (sets its noise); <= 0: 2 m
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();

@@ -102,6 +102,26 @@ bool OrthoTileAccumulator::add(const OrthoHit& hit) {
   return row >= row_begin_ && row < row_end_;
 }
 
+Eigen::Vector4f OrthoTileAccumulator::filledAncillary(
+    const std::vector<std::pair<std::size_t, float>>& sources, float weight_sum,
+    std::size_t nearest) const {
+  // Interpolated like the spectrum: the pixel lies between its sources, so
+  // its line and sample do too. Any one source's values instead would place
+  // it a whole pixel off (and the nearest of two at equal distance is
+  // whichever the scan meets first: always the same side, a bias).
+  // Sources from different passes over the spot (lines far apart) do not
+  // interpolate: then the nearest source's values.
+  float line_min = std::numeric_limits<float>::infinity(), line_max = -line_min;
+  Eigen::Vector4f mean = Eigen::Vector4f::Zero();
+  for (const auto& [j, weight] : sources) {
+    line_min = std::min(line_min, ancillary_[j][0]);
+    line_max = std::max(line_max, ancillary_[j][0]);
+    mean += weight * ancillary_[j];
+  }
+  if (line_max - line_min > kMaxInterpolatedLineSpan) return ancillary_[nearest];
+  return mean / weight_sum;
+}
+
 void OrthoTileAccumulator::finish(int fill_radius_px) {
   if (finished_) throw std::logic_error("OrthoTileAccumulator::finish called twice");
   finished_ = true;
@@ -180,7 +200,7 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
       float* target = &sums_[i * std::size_t(bands_)];
       for (int b = 0; b < bands_; ++b) target[b] = spectrum[std::size_t(b)] / weight_sum;
       filled_mark[i] = 1;
-      ancillary_[i] = ancillary_[nearest];
+      ancillary_[i] = filledAncillary(sources, weight_sum, nearest);
       ++filled;
     }
     filled_per_row[std::size_t(row - row_begin_)] = filled;

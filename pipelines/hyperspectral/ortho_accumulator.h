@@ -24,8 +24,11 @@
 // swath has all its sources in one half-plane, which never meets two
 // opposite cones, so holes between lines and samples are closed but the
 // swath is never grown outwards, and nothing is invented farther than the
-// radius (set from the line spacing by the caller). Its ancillary values are those of the nearest observed pixel
-// used. Pixels still empty stay NaN (spectrum and ancillary).
+// radius (set from the line spacing by the caller). Its ancillary values are
+// interpolated with the same weights (a line between two lines is
+// fractional), unless its sources' lines lie more than
+// kMaxInterpolatedLineSpan apart (two passes over the spot): then those of
+// the nearest source. Pixels still empty stay NaN (spectrum and ancillary).
 //
 // Tiles and halo. The tile owns grid rows [row_begin, row_end) and also
 // accumulates `halo` rows above and below them, so that filling near its
@@ -45,6 +48,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "pipelines/hyperspectral/ortho_grid.h"
@@ -61,6 +65,10 @@ struct OrthoHit {
 
 class OrthoTileAccumulator {
  public:
+  // A filled pixel's ancillary values are interpolated from sources whose
+  // scan lines lie at most this far apart (one pass over the spot).
+  static constexpr float kMaxInterpolatedLineSpan = 4.0f;
+
   // std::invalid_argument for an empty row range or one outside the grid,
   // non-positive bands or a negative halo.
   OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin, int row_end, int halo);
@@ -102,6 +110,8 @@ class OrthoTileAccumulator {
 
  private:
   enum : std::uint8_t { kEmpty = 0, kObserved = 1, kFilled = 2 };
+  Eigen::Vector4f filledAncillary(const std::vector<std::pair<std::size_t, float>>& sources,
+                                  float weight_sum, std::size_t nearest) const;
   std::size_t index(int row, int col) const {
     return std::size_t(row - first_row_) * std::size_t(cols_) + std::size_t(col);
   }

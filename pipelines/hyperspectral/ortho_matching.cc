@@ -1,8 +1,11 @@
 #include "pipelines/hyperspectral/ortho_matching.h"
 
+#include "pipelines/hyperspectral/ortho_accumulator.h"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -85,6 +88,36 @@ std::optional<Eigen::Vector3d> interpolatedPoint(const RgbOrthoRenderer& rendere
          (1 - a) * b * patch.point(0, 1) + a * b * patch.point(1, 1);
 }
 
+// A tie's UHI pixel (continuous line, sample) at continuous grid position
+// (col, row): the ancillary layer interpolated bilinearly over the four
+// pixels around it, when all four hold values of one pass (their lines
+// within kMaxLineSpan); nullopt otherwise. Taking the nearest pixel's values
+// instead puts the tie up to half a pixel off along the track, and a
+// gap-filled pixel's nearest source a whole one.
+constexpr float kMaxLineSpan = OrthoTileAccumulator::kMaxInterpolatedLineSpan;
+
+std::optional<Eigen::Vector2d> interpolatedLineSample(const cv::Mat& ancillary,
+                                                      const Eigen::Vector2d& col_row) {
+  const int c0 = int(std::floor(col_row.x()));
+  const int r0 = int(std::floor(col_row.y()));
+  if (c0 < 0 || r0 < 0 || c0 + 1 >= ancillary.cols || r0 + 1 >= ancillary.rows) return std::nullopt;
+  const double a = col_row.x() - c0, b = col_row.y() - r0;
+  Eigen::Vector2d value = Eigen::Vector2d::Zero();
+  float line_min = std::numeric_limits<float>::infinity(), line_max = -line_min;
+  for (int r = 0; r < 2; ++r) {
+    for (int c = 0; c < 2; ++c) {
+      const cv::Vec4f& anc = ancillary.at<cv::Vec4f>(r0 + r, c0 + c);
+      if (!std::isfinite(anc[0]) || !std::isfinite(anc[1])) return std::nullopt;
+      line_min = std::min(line_min, anc[0]);
+      line_max = std::max(line_max, anc[0]);
+      const double weight = (c == 0 ? 1.0 - a : a) * (r == 0 ? 1.0 - b : b);
+      value += weight * Eigen::Vector2d(anc[0], anc[1]);
+    }
+  }
+  if (line_max - line_min > kMaxLineSpan) return std::nullopt;
+  return value;
+}
+
 }  // namespace
 
 OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_luma,
@@ -147,17 +180,22 @@ OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_
       ++counts.matched;
       const Eigen::Vector2d g(cx, cy);
       const Eigen::Vector2d h = g + Eigen::Vector2d(peak.x + dx - radius, peak.y + dy - radius);
-      // Nearest-pixel ancillary; the RGB side moved by the same rounding.
+      // The UHI pixel at the match (the ancillary layer interpolated at h)
+      // saw the mesh point at the patch centre g. Where the layer cannot be
+      // interpolated (a swath edge, two passes), the nearest pixel's values,
+      // the RGB side moved by the same rounding.
       const Eigen::Vector2i h_pixel(int(std::lround(h.x())), int(std::lround(h.y())));
       if (!grid.contains(h_pixel)) continue;
       const cv::Vec4f& anc = ancillary.at<cv::Vec4f>(h_pixel.y(), h_pixel.x());
       if (!std::isfinite(anc[0]) || !std::isfinite(anc[1])) continue;
-      const Eigen::Vector2d g_moved = g + (h_pixel.cast<double>() - h);
+      const std::optional<Eigen::Vector2d> line_sample = interpolatedLineSample(ancillary, h);
+      const Eigen::Vector2d g_moved = line_sample ? g : g + (h_pixel.cast<double>() - h);
       const std::optional<Eigen::Vector3d> p_W = interpolatedPoint(renderer, g_moved);
       if (!p_W) continue;
       ExtrinsicTiePoint tie;
-      tie.line = std::llround(anc[0]);
-      tie.sample = anc[1];
+      tie.line_position = line_sample ? line_sample->x() : double(anc[0]);
+      tie.line = std::llround(tie.line_position);
+      tie.sample = line_sample ? line_sample->y() : double(anc[1]);
       tie.range_m = std::isfinite(anc[2]) ? anc[2] : 0.0;
       tie.p_W = *p_W;
       tie.rgb_col_row = g;

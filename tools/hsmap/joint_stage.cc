@@ -35,8 +35,15 @@ std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& 
   std::vector<JointTiePoint> ties;
   ties.reserve(found.size());
   for (const ExtrinsicTiePoint& tie : found) {
-    if (tie.line < 0 || std::size_t(tie.line) >= line_times.size()) continue;
-    ties.push_back({tie.line, line_times[std::size_t(tie.line)], tie.sample, tie.range_m, tie.p_W});
+    // The recorded time at the tie's continuous line position, between the
+    // two lines around it.
+    const double below = std::floor(tie.line_position);
+    const double alpha = tie.line_position - below;
+    if (!(below >= 0.0) || below + (alpha > 0.0 ? 1.0 : 0.0) >= double(line_times.size())) continue;
+    const std::size_t a = std::size_t(below);
+    const double t_recorded =
+        alpha > 0.0 ? (1.0 - alpha) * line_times[a] + alpha * line_times[a + 1] : line_times[a];
+    ties.push_back({tie.line, t_recorded, tie.sample, tie.range_m, tie.p_W});
   }
   return ties;
 }

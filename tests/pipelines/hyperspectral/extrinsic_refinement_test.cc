@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "core/geometry/pose_interpolation.h"
 #include "core/geometry/pushbroom_camera.h"
 #include "core/geometry/so3.h"
 #include "core/io/envi_writer.h"
@@ -78,6 +79,7 @@ std::vector<ExtrinsicTiePoint> tiePoints(int count, double sample_noise_px, std:
   for (int i = 0; i < count; ++i) {
     ExtrinsicTiePoint tie;
     tie.line = line(rng);
+    tie.line_position = double(tie.line);
     const double u = sample(rng);
     tie.p_W = seenPoint(int(tie.line), u);
     tie.sample = u + noise(rng);
@@ -136,10 +138,51 @@ TEST(ExtrinsicRefinement, WithoutTiePointsKeepsTheExtrinsicAndSaysSo) {
   EXPECT_NE(result.summary().find("not refined"), std::string::npos);
 }
 
+TEST(ExtrinsicRefinement, ATiePointBetweenTwoLinesIsSeenFromThePoseBetweenThem) {
+  // Tie points half-way between lines (a gap-filled pixel of the ortho-image):
+  // the UHI saw them from the pose interpolated between the two lines, 5 mm
+  // along the track from either; taken from one of the two lines, they
+  // would be off by ~2.5 px along the track.
+  std::mt19937 rng(8);
+  std::uniform_int_distribution<int> line(0, 398);
+  std::uniform_real_distribution<double> sample(100.0, 1820.0);
+  const PushbroomCamera camera(uhiCamera());
+  std::vector<ExtrinsicTiePoint> ties;
+  for (int i = 0; i < 300; ++i) {
+    ExtrinsicTiePoint tie;
+    const int below = line(rng);
+    tie.line_position = below + 0.5;
+    tie.line = below + 1;
+    tie.sample = sample(rng);
+    const SE3d T_W_U = interpolatePose(cameraPose(below), cameraPose(below + 1), 0.5) * trueExtrinsic();
+    const Eigen::Vector3d ray_W = T_W_U.q * *camera.unproject(tie.sample);
+    double s = 2.0;
+    for (int k = 0; k < 50; ++k) {
+      const Eigen::Vector3d p = T_W_U.t + s * ray_W;
+      s += (seabedDepth(p.x(), p.y()) - p.z()) / ray_W.z();
+    }
+    tie.p_W = T_W_U.t + s * ray_W;
+    tie.range_m = 2.0;
+    ties.push_back(tie);
+  }
+  ExtrinsicRefinementOptions options;
+  options.sigma_match_m = 0.5 * 2.0 / 1500.0;
+  const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
+      ties, runLinePoses(400), guessedExtrinsic(), uhiCamera(), surveyPrior(), options);
+  ASSERT_TRUE(result.refined) << result.summary();
+  EXPECT_LT(rotationErrorDeg(result.T_C_U, trueExtrinsic()), 0.01) << result.summary();
+  EXPECT_LT((result.T_C_U.t - trueExtrinsic().t).norm(), 0.001) << result.summary();
+  EXPECT_LT(result.rms_across_after_px, 0.05) << result.summary();
+  EXPECT_EQ(result.outliers, 0);
+}
+
 TEST(ExtrinsicRefinement, TiePointsOnLinesWithoutPosesAreSkippedAndReported) {
   std::mt19937 rng(6);
   std::vector<ExtrinsicTiePoint> ties = tiePoints(3, 0.0, rng);
-  for (ExtrinsicTiePoint& tie : ties) tie.line += 10000;
+  for (ExtrinsicTiePoint& tie : ties) {
+    tie.line += 10000;
+    tie.line_position += 10000.0;
+  }
   const ExtrinsicRefinementResult result = refineExtrinsicFromTiePoints(
       ties, runLinePoses(400), guessedExtrinsic(), uhiCamera(), surveyPrior());
   EXPECT_FALSE(result.refined);
@@ -242,14 +285,13 @@ TEST(ExtrinsicRefinement, MatchingFindsTheShiftBetweenTheOrthoImagesAndTiesTheRi
   for (const ExtrinsicTiePoint& tie : ties) {
     EXPECT_LT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 0.3)
         << tie.rgb_col_row.transpose();
-    // Nearest-pixel ancillary of the match, the point under the RGB position
-    // moved by the same rounding.
-    const Eigen::Vector2d h_pixel = tie.hyper_col_row.array().round();
-    EXPECT_EQ(tie.line, std::llround(h_pixel.y()));
-    EXPECT_DOUBLE_EQ(tie.sample, 1000.0 + h_pixel.x());
-    const Eigen::Vector2d g_moved = tie.rgb_col_row + (h_pixel - tie.hyper_col_row);
+    // The ancillary layer interpolated at the match (line = row, sample =
+    // 1000 + col, continuous), and the point under the patch centre.
+    EXPECT_NEAR(tie.line_position, tie.hyper_col_row.y(), 1e-3);
+    EXPECT_EQ(tie.line, std::llround(tie.line_position));
+    EXPECT_NEAR(tie.sample, 1000.0 + tie.hyper_col_row.x(), 1e-3);
     const Eigen::Vector2d pixel_of_point = seabed.grid.pixelOfW(tie.p_W, seabed.projection);
-    EXPECT_LT((pixel_of_point - g_moved).norm(), 0.01);
+    EXPECT_LT((pixel_of_point - tie.rgb_col_row).norm(), 0.01);
     EXPECT_NEAR(tie.p_W.z(), 2.0, 1e-4);
     EXPECT_GT(tie.ncc, 0.9);
   }

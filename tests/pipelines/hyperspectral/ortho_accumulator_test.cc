@@ -1,5 +1,6 @@
 // OrthoTileAccumulator: the mean of the hits in a pixel, the nearest hit's
-// ancillary values, gap filling only between observed pixels, tiles with a
+// ancillary values (a filled pixel's interpolated), gap filling only between
+// observed pixels, tiles with a
 // halo equal to one accumulator over the whole grid.
 #include "pipelines/hyperspectral/ortho_accumulator.h"
 
@@ -77,6 +78,39 @@ TEST(OrthoTileAccumulator, FillsHolesBetweenObservedPixelsButNeverGrowsTheEdge) 
   }
   EXPECT_EQ(tile.observedPixels(), 6);
   EXPECT_EQ(tile.filledPixels(), 3);
+}
+
+TEST(OrthoTileAccumulator, AFilledPixelsLineAndSampleLieBetweenItsSources) {
+  // Scan lines along the rows: line 10 observed row 0, line 11 row 2; row 1
+  // is the gap between them. Its line is 10.5 (not one of the two, which
+  // would place the pixel a whole row off); farther east, two passes over
+  // the spot (lines 10 and 500) do not average: the nearest source's values.
+  const OrthoGrid grid = smallGrid(7, 3);
+  OrthoTileAccumulator tile(grid, 1, 0, 3, 0);
+  const std::vector<float> s{1.0f};
+  for (int c = 0; c < 3; ++c) {
+    tile.add(hitAt(c, 0, s, 10, 100 + c));
+    tile.add(hitAt(c, 2, s, 11, 100 + c));
+  }
+  for (int c = 4; c < 7; ++c) {
+    tile.add(hitAt(c, 0, s, 10, 100 + c));
+    tile.add(hitAt(c, 2, s, 500, 900 + c));
+  }
+  tile.finish(1);
+  // Row 1 but column 3 (no source in its cross), and column 3 of rows 0
+  // and 2 (between columns 2 and 4).
+  EXPECT_EQ(tile.filledPixels(), 8);
+  std::vector<float> ancillary(4 * 7);
+  tile.ancillaryRow(1, ancillary.data());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_FLOAT_EQ(ancillary[0 * 7 + c], 10.5f) << "col " << c;
+    EXPECT_FLOAT_EQ(ancillary[1 * 7 + c], 100.0f + c) << "col " << c;
+    EXPECT_FLOAT_EQ(ancillary[2 * 7 + c], 1.5f) << "col " << c;
+  }
+  for (int c = 4; c < 7; ++c) {
+    const float line = ancillary[0 * 7 + c];
+    EXPECT_TRUE(line == 10.0f || line == 500.0f) << "col " << c << ": " << line;
+  }
 }
 
 TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
