@@ -50,10 +50,9 @@ SE3d guessedExtrinsic() {
               trueExtrinsic().t + Eigen::Vector3d(0.03, -0.03, 0.025));
 }
 
-// Where the ray of (line, sample) meets the seabed under the true extrinsic.
-Eigen::Vector3d seenPoint(int line, double sample) {
+// Where the ray of `sample` from the UHI at T_W_U meets the seabed.
+Eigen::Vector3d seabedPointSeenFrom(const SE3d& T_W_U, double sample) {
   const PushbroomCamera camera(uhiCamera());
-  const SE3d T_W_U = cameraPose(line) * trueExtrinsic();
   const Eigen::Vector3d ray_W = T_W_U.q * *camera.unproject(sample);
   double s = 2.0;
   for (int i = 0; i < 50; ++i) {  // fixed point on the depth along the ray
@@ -61,6 +60,11 @@ Eigen::Vector3d seenPoint(int line, double sample) {
     s += (seabedDepth(p.x(), p.y()) - p.z()) / ray_W.z();
   }
   return T_W_U.t + s * ray_W;
+}
+
+// Where the ray of (line, sample) meets the seabed under the true extrinsic.
+Eigen::Vector3d seenPoint(int line, double sample) {
+  return seabedPointSeenFrom(cameraPose(line) * trueExtrinsic(), sample);
 }
 
 // The run's line poses, made with the guess: T_W_U = T_W_C T_C_U_guess.
@@ -146,7 +150,6 @@ TEST(ExtrinsicRefinement, ATiePointBetweenTwoLinesIsSeenFromThePoseBetweenThem) 
   std::mt19937 rng(8);
   std::uniform_int_distribution<int> line(0, 398);
   std::uniform_real_distribution<double> sample(100.0, 1820.0);
-  const PushbroomCamera camera(uhiCamera());
   std::vector<ExtrinsicTiePoint> ties;
   for (int i = 0; i < 300; ++i) {
     ExtrinsicTiePoint tie;
@@ -154,14 +157,8 @@ TEST(ExtrinsicRefinement, ATiePointBetweenTwoLinesIsSeenFromThePoseBetweenThem) 
     tie.line_position = below + 0.5;
     tie.line = below + 1;
     tie.sample = sample(rng);
-    const SE3d T_W_U = interpolatePose(cameraPose(below), cameraPose(below + 1), 0.5) * trueExtrinsic();
-    const Eigen::Vector3d ray_W = T_W_U.q * *camera.unproject(tie.sample);
-    double s = 2.0;
-    for (int k = 0; k < 50; ++k) {
-      const Eigen::Vector3d p = T_W_U.t + s * ray_W;
-      s += (seabedDepth(p.x(), p.y()) - p.z()) / ray_W.z();
-    }
-    tie.p_W = T_W_U.t + s * ray_W;
+    tie.p_W = seabedPointSeenFrom(
+        interpolatePose(cameraPose(below), cameraPose(below + 1), 0.5) * trueExtrinsic(), tie.sample);
     tie.range_m = 2.0;
     ties.push_back(tie);
   }
