@@ -11,6 +11,7 @@
 //                                  T_C_U_lines: T_W_U = T_W_C(t + d) T_C_U_lines
 //   RUN/hyperspectral/ortho.*      the hyperspectral ortho-image (its grid: map info)
 //   RUN/hyperspectral/ancillary.*  scan line and sample of the hit nearest each pixel centre
+//                                  (a gap-filled pixel's interpolated)
 //   RUN/map/mesh.ply               the mesh; the RGB ortho-image and its points p_W are
 //                                  rendered from it on the same grid (RgbOrthoRenderer)
 //
@@ -39,16 +40,19 @@
 //      and the peak is refined to sub-pixel by a parabola in each axis.
 //      A match says: the content at RGB grid position g shows up in the
 //      hyperspectral ortho at h = g + shift.
-//   3. Tie points. Rule: NEAREST-PIXEL ancillary. h_i = round(h) gives, from
-//      the ancillary image, the scan line and sample (and range) of the UHI
-//      pixel painted there; the RGB side is moved by the same rounding,
-//      g' = g + (h_i - h), and its point p_W is the bilinear interpolation
-//      of the renderer's points at g' (all four must be hits). The UHI pixel
-//      (line, sample) thus saw p_W.
+//   3. Tie points. Rule: the ancillary image INTERPOLATED at h (bilinear
+//      over the four pixels around it, which must all be set and span at
+//      most 4 lines) gives the UHI pixel's continuous line position and
+//      sample; p_W is the renderer's point at g. Otherwise the nearest
+//      pixel h_i = round(h), the RGB side moved by the same rounding,
+//      g' = g + (h_i - h). p_W is the bilinear interpolation of the
+//      renderer's points (all four must be hits). The UHI pixel
+//      (line position, sample) thus saw p_W.
 //   4. Solve (core/graph + factors + solvers, docs/ENGINE.md): one variable
 //      E(0) = T_C_U, initialised at T_C_U_lines; one
 //      PushbroomExtrinsicFactor per tie point with the line's camera pose
-//      FIXED, T_W_C(line) = T_W_U(line) T_C_U_lines^-1, noise from the match
+//      FIXED, T_W_C = T_W_U T_C_U_lines^-1 with T_W_U interpolated between
+//      the two lines around the line position, noise from the match
 //      precision on the ground (sigma_match_m) over the pixel's range
 //      (sigma_u = f sigma_match_m / range, sigma_across = sigma_match_m /
 //      range), a Cauchy loss of scale robust_scale; an ExtrinsicPriorFactor
