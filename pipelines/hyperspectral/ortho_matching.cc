@@ -1,7 +1,5 @@
 #include "pipelines/hyperspectral/ortho_matching.h"
 
-#include "pipelines/hyperspectral/ortho_accumulator.h"
-
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -9,6 +7,8 @@
 #include <optional>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include "pipelines/hyperspectral/ortho_accumulator.h"
 
 namespace hsmap {
 
@@ -91,10 +91,9 @@ std::optional<Eigen::Vector3d> interpolatedPoint(const RgbOrthoRenderer& rendere
 // A tie's UHI pixel (continuous line, sample) at continuous grid position
 // (col, row): the ancillary layer interpolated bilinearly over the four
 // pixels around it, when all four hold values of one pass (their lines
-// within kMaxLineSpan); nullopt otherwise. Taking the nearest pixel's values
-// instead puts the tie up to half a pixel off along the track, and a
-// gap-filled pixel's nearest source a whole one.
-constexpr float kMaxLineSpan = OrthoTileAccumulator::kMaxInterpolatedLineSpan;
+// within the span the accumulator interpolates over); nullopt otherwise.
+// Taking the nearest pixel's values instead puts the tie up to half a pixel
+// off along the track, and a gap-filled pixel's nearest source a whole one.
 
 std::optional<Eigen::Vector2d> interpolatedLineSample(const cv::Mat& ancillary,
                                                       const Eigen::Vector2d& col_row) {
@@ -114,7 +113,7 @@ std::optional<Eigen::Vector2d> interpolatedLineSample(const cv::Mat& ancillary,
       value += weight * Eigen::Vector2d(anc[0], anc[1]);
     }
   }
-  if (line_max - line_min > kMaxLineSpan) return std::nullopt;
+  if (line_max - line_min > OrthoTileAccumulator::kMaxInterpolatedLineSpan) return std::nullopt;
   return value;
 }
 

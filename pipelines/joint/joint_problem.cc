@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
-#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -57,27 +56,31 @@ struct FrameObservationUse {
   bool keyframe;
 };
 
-// What frame `frame` saw: a keyframe's observations in the map (those of its
-// own pose plus the sightings recorded from a track's detection, which the
-// front-end's per-frame list lacks because the landmark did not exist yet),
-// otherwise the frame's tracked landmarks.
+// Whether `frame` is a keyframe of the map (its id names a keyframe taken
+// from this frame).
 bool isKeyframeOfMap(const FrameRecord& frame, const JointInputs& in) {
   return frame.keyframe && frame.keyframe_id >= 0 &&
          std::size_t(frame.keyframe_id) < in.map_W->keyframes().size() &&
          in.map_W->keyframe(frame.keyframe_id).frame_index == frame.index;
 }
 
-std::vector<FrameObservation> observationsSeenBy(const FrameRecord& frame, const JointInputs& in) {
-  std::vector<FrameObservation> seen;
-  if (isKeyframeOfMap(frame, in)) {
+// Calls visit(landmark, pixel) for what `frame` saw: a keyframe's
+// observations in the map (those of its own pose plus the sightings recorded
+// from a track's detection, which the front-end's per-frame list lacks
+// because the landmark did not exist yet), otherwise the frame's tracked
+// landmarks.
+template <typename Visit>
+void forEachObservationOf(const FrameRecord& frame, bool keyframe_of_map, const JointInputs& in,
+                          Visit&& visit) {
+  if (keyframe_of_map) {
     for (const KeyframeObservation& o : in.map_W->keyframe(frame.keyframe_id).observations) {
-      seen.push_back({frame.index, o.landmark_id, float(o.pixel.x()), float(o.pixel.y())});
+      visit(o.landmark_id, o.pixel);
     }
-    return seen;
+    return;
   }
-  const std::span<const FrameObservation> tracked = in.frontend->observationsOfFrame(frame.index);
-  seen.assign(tracked.begin(), tracked.end());
-  return seen;
+  for (const FrameObservation& o : in.frontend->observationsOfFrame(frame.index)) {
+    visit(o.landmark, Eigen::Vector2d(o.u, o.v));
+  }
 }
 
 }  // namespace
@@ -157,20 +160,19 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     const SE3d T_C_W = spline.pose(t).inverse();
     int used = 0;
     const bool is_keyframe = isKeyframeOfMap(frame, in);
-    for (const FrameObservation& o : observationsSeenBy(frame, in)) {
-      if (o.landmark < 0 || std::size_t(o.landmark) >= in.map_W->landmarks().size()) continue;
-      const Landmark& landmark = in.map_W->landmark(o.landmark);
-      if (!landmark.valid) continue;
-      const Eigen::Vector2d pixel(o.u, o.v);
+    forEachObservationOf(frame, is_keyframe, in, [&](int id, const Eigen::Vector2d& pixel) {
+      if (id < 0 || std::size_t(id) >= in.map_W->landmarks().size()) return;
+      const Landmark& landmark = in.map_W->landmark(id);
+      if (!landmark.valid) return;
       const Eigen::Vector3d p_C = T_C_W * landmark.p_F;
       if (p_C.z() <= 0.0 || (rgb.project(p_C) - pixel).norm() > options.start_gate_px) {
         ++result.gated_observations;
-        continue;
+        return;
       }
-      observations.push_back({t, o.landmark, pixel, is_keyframe});
-      ++seen_by[o.landmark];
+      observations.push_back({t, id, pixel, is_keyframe});
+      ++seen_by[id];
       ++used;
-    }
+    });
     if (used > 0) posed_frame_times.push_back(t);
   }
   result.frames = int(posed_frame_times.size());
