@@ -25,7 +25,15 @@
 //      finds "the band combination closest to the RGB camera's response";
 //      the images are not yet aligned when it runs, so it is done on blurred
 //      images, and NCC makes the matching indifferent to gain and offset.
-//   2. Matching. On a lattice of patch centres every patch_spacing_m, the RGB
+//   2. Matching, coarse to fine. Coarse step (coarse_ortho_shift.h): both
+//      images resampled to coarse_pixel_m, large patches
+//      (coarse_patch_size_m) every coarse_spacing_m searched within
+//      +-coarse_search_radius_m with the tests below; a lattice patch's
+//      search is centred on the per-axis median shift of the coarse matches
+//      within coarse_neighbourhood_m (no shift with fewer than
+//      coarse_min_matches there), so a guess that moves the hyperspectral
+//      image by more than search_radius_m is still matched.
+//      Lattice: patch centres every patch_spacing_m, the RGB
 //      luminance patch (patch_size_m square) is the template; it is searched
 //      in the hyperspectral luminance within +-search_radius_m by normalised
 //      cross-correlation (cv::matchTemplate, TM_CCOEFF_NORMED) after a

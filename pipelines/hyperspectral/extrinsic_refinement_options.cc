@@ -29,6 +29,19 @@ void ExtrinsicRefinementOptions::validate() const {
   require(std::isfinite(patch_size_m) && patch_size_m > 0.0, "patch_size_m", "> 0", patch_size_m);
   require(std::isfinite(search_radius_m) && search_radius_m > 0.0, "search_radius_m", "> 0",
           search_radius_m);
+  require(std::isfinite(coarse_pixel_m) && coarse_pixel_m >= 0.0, "coarse_pixel_m", ">= 0",
+          coarse_pixel_m);
+  if (coarse_pixel_m > 0.0) {
+    require(std::isfinite(coarse_patch_size_m) && coarse_patch_size_m > 0.0, "coarse_patch_size_m",
+            "> 0", coarse_patch_size_m);
+    require(std::isfinite(coarse_spacing_m) && coarse_spacing_m > 0.0, "coarse_spacing_m", "> 0",
+            coarse_spacing_m);
+    require(std::isfinite(coarse_search_radius_m) && coarse_search_radius_m > 0.0,
+            "coarse_search_radius_m", "> 0", coarse_search_radius_m);
+    require(std::isfinite(coarse_neighbourhood_m) && coarse_neighbourhood_m > 0.0,
+            "coarse_neighbourhood_m", "> 0", coarse_neighbourhood_m);
+    require(coarse_min_matches >= 1, "coarse_min_matches", ">= 1", coarse_min_matches);
+  }
   require(std::isfinite(blur_sigma_px) && blur_sigma_px >= 0.0, "blur_sigma_px", ">= 0",
           blur_sigma_px);
   require(std::isfinite(highpass_sigma_px) && highpass_sigma_px >= 0.0, "highpass_sigma_px", ">= 0",

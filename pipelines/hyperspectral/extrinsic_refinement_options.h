@@ -15,6 +15,18 @@ struct ExtrinsicRefinementOptions {
   double patch_spacing_m = 0.15;
   double patch_size_m = 0.20;
   double search_radius_m = 0.15;
+  // Coarse step before the lattice (a bad guess of T_C_U or d shifts the
+  // whole hyperspectral ortho-image by more than search_radius_m): patches of
+  // coarse_patch_size_m every coarse_spacing_m, on images resampled to
+  // coarse_pixel_m, searched within +-coarse_search_radius_m; each lattice
+  // patch is then searched around the median shift of the coarse matches
+  // within coarse_neighbourhood_m. coarse_pixel_m = 0: no coarse step.
+  double coarse_pixel_m = 0.01;
+  double coarse_patch_size_m = 0.4;
+  double coarse_spacing_m = 0.2;
+  double coarse_search_radius_m = 0.4;
+  double coarse_neighbourhood_m = 0.6;
+  int coarse_min_matches = 3;  // around a patch; fewer: searched around no shift
   double blur_sigma_px = 1.5;
   double highpass_sigma_px = 10.0;  // minus a blur of this sigma (shading); 0: off
   double min_ncc = 0.7;

@@ -8,68 +8,13 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "pipelines/hyperspectral/coarse_ortho_shift.h"
 #include "pipelines/hyperspectral/ortho_accumulator.h"
+#include "pipelines/hyperspectral/ortho_ncc.h"
 
 namespace hsmap {
 
 namespace {
-
-// Parabola through (-1, a), (0, b), (1, c): offset of the vertex in [-0.5, 0.5].
-double parabolaPeak(double a, double b, double c) {
-  const double denominator = a - 2.0 * b + c;
-  if (!(denominator < 0.0)) return 0.0;
-  return std::clamp(0.5 * (a - c) / denominator, -0.5, 0.5);
-}
-
-// Blurred copy with NaN replaced by the mean of the valid pixels, and the
-// mask (255 valid) of the original.
-struct PreparedImage {
-  cv::Mat blurred;  // CV_32F
-  cv::Mat valid;    // CV_8U
-  double stddev = 0.0;
-};
-
-PreparedImage prepare(const cv::Mat& luma, double blur_sigma_px, double highpass_sigma_px) {
-  PreparedImage out;
-  out.valid = cv::Mat(luma.size(), CV_8U);
-  double sum = 0.0, sum2 = 0.0;
-  std::int64_t n = 0;
-  for (int r = 0; r < luma.rows; ++r) {
-    const float* row = luma.ptr<float>(r);
-    std::uint8_t* mask = out.valid.ptr<std::uint8_t>(r);
-    for (int c = 0; c < luma.cols; ++c) {
-      const bool ok = std::isfinite(row[c]);
-      mask[c] = ok ? 255 : 0;
-      if (ok) {
-        sum += row[c];
-        sum2 += double(row[c]) * row[c];
-        ++n;
-      }
-    }
-  }
-  const double mean = n > 0 ? sum / double(n) : 0.0;
-  out.stddev = n > 1 ? std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean)) : 0.0;
-  out.blurred = luma.clone();
-  out.blurred.setTo(cv::Scalar(mean), out.valid == 0);
-  if (blur_sigma_px > 0.0) {
-    cv::GaussianBlur(out.blurred, out.blurred, cv::Size(0, 0), blur_sigma_px, blur_sigma_px,
-                     cv::BORDER_REFLECT);
-  }
-  if (highpass_sigma_px > 0.0) {
-    cv::Mat background;
-    cv::GaussianBlur(out.blurred, background, cv::Size(0, 0), highpass_sigma_px, highpass_sigma_px,
-                     cv::BORDER_REFLECT);
-    out.blurred -= background;
-    cv::Scalar mean, stddev;
-    cv::meanStdDev(out.blurred, mean, stddev, out.valid);
-    out.stddev = stddev[0];
-  }
-  return out;
-}
-
-bool allValid(const cv::Mat& valid, const cv::Rect& window) {
-  return cv::countNonZero(valid(window)) == window.area();
-}
 
 // p_W at continuous grid position (col, row): bilinear over the four pixels
 // around it, all of which must be hits.
@@ -130,55 +75,52 @@ OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_
       ancillary.type() != CV_32FC4) {
     throw std::invalid_argument("matchOrthoImages: the images are not on the renderer's grid");
   }
-  const PreparedImage rgb = prepare(rgb_luma, options.blur_sigma_px, options.highpass_sigma_px);
-  const PreparedImage hyper = prepare(hyper_luma, options.blur_sigma_px, options.highpass_sigma_px);
+  const PreparedImage rgb =
+      prepareForMatching(rgb_luma, options.blur_sigma_px, options.highpass_sigma_px);
+  const PreparedImage hyper =
+      prepareForMatching(hyper_luma, options.blur_sigma_px, options.highpass_sigma_px);
   const int half = std::max(2, int(std::lround(0.5 * options.patch_size_m / grid.pixel_m)));
   const int radius = std::max(2, int(std::lround(options.search_radius_m / grid.pixel_m)));
   const int step = std::max(1, int(std::lround(options.patch_spacing_m / grid.pixel_m)));
   const int size = 2 * half + 1;
   const int margin = half + radius;
-  const double exclusion2 = options.exclusion_radius_px * options.exclusion_radius_px;
   const double min_std = options.min_template_std * rgb.stddev;
+  const CoarseOrthoShift coarse(rgb, hyper, grid.pixel_m, options);
+  const cv::Rect image_rect(0, 0, grid.cols, grid.rows);
 
   OrthoMatchCounts counts;
+  counts.coarse_patches = coarse.patches();
+  counts.coarse_matched = coarse.matched();
   cv::Mat scores;
   for (int cy = margin; cy + margin < grid.rows; cy += step) {
     for (int cx = margin; cx + margin < grid.cols; cx += step) {
       ++counts.patches;
+      const Eigen::Vector2d g(cx, cy);
+      // The search window centred where the coarse step puts the content.
+      const std::optional<Eigen::Vector2d> coarse_shift = coarse.shiftAt(g);
+      const cv::Point offset = coarse_shift ? cv::Point(int(std::lround(coarse_shift->x())),
+                                                        int(std::lround(coarse_shift->y())))
+                                            : cv::Point(0, 0);
       const cv::Rect templ_rect(cx - half, cy - half, size, size);
-      const cv::Rect search_rect(cx - margin, cy - margin, size + 2 * radius, size + 2 * radius);
+      const cv::Rect search_rect(cx + offset.x - margin, cy + offset.y - margin, size + 2 * radius,
+                                 size + 2 * radius);
+      if ((search_rect & image_rect) != search_rect) continue;
       if (!allValid(rgb.valid, templ_rect) || !allValid(hyper.valid, search_rect)) continue;
       const cv::Mat templ = rgb.blurred(templ_rect);
       cv::Scalar mean, stddev;
       cv::meanStdDev(templ, mean, stddev);
       if (stddev[0] < min_std || stddev[0] <= 0.0) continue;
       ++counts.textured;
+      if (offset != cv::Point(0, 0)) ++counts.shifted;
       cv::matchTemplate(hyper.blurred(search_rect), templ, scores, cv::TM_CCOEFF_NORMED);
-      double best = 0.0;
-      cv::Point peak;
-      cv::minMaxLoc(scores, nullptr, &best, nullptr, &peak);
-      if (!(best >= options.min_ncc)) continue;
-      if (peak.x <= 0 || peak.y <= 0 || peak.x >= scores.cols - 1 || peak.y >= scores.rows - 1) {
-        continue;
-      }
-      double second = -1.0;
-      for (int r = 0; r < scores.rows; ++r) {
-        const float* row = scores.ptr<float>(r);
-        for (int c = 0; c < scores.cols; ++c) {
-          const double d2 = double(c - peak.x) * (c - peak.x) + double(r - peak.y) * (r - peak.y);
-          if (d2 > exclusion2) second = std::max(second, double(row[c]));
-        }
-      }
-      if (second > best - options.min_peak_margin) continue;
-      const double dx =
-          parabolaPeak(scores.at<float>(peak.y, peak.x - 1), scores.at<float>(peak.y, peak.x),
-                       scores.at<float>(peak.y, peak.x + 1));
-      const double dy =
-          parabolaPeak(scores.at<float>(peak.y - 1, peak.x), scores.at<float>(peak.y, peak.x),
-                       scores.at<float>(peak.y + 1, peak.x));
+      const std::optional<NccPeak> peak = unambiguousPeak(scores, options.min_ncc,
+                                                          options.min_peak_margin,
+                                                          options.exclusion_radius_px);
+      if (!peak) continue;
+      const double best = peak->ncc;
       ++counts.matched;
-      const Eigen::Vector2d g(cx, cy);
-      const Eigen::Vector2d h = g + Eigen::Vector2d(peak.x + dx - radius, peak.y + dy - radius);
+      const Eigen::Vector2d h =
+          g + Eigen::Vector2d(offset.x + peak->x - radius, offset.y + peak->y - radius);
       // The UHI pixel at the match (the ancillary layer interpolated at h)
       // saw the mesh point at the patch centre g. Where the layer cannot be
       // interpolated (a swath edge, two passes), the nearest pixel's values,

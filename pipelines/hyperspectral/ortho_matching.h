@@ -21,6 +21,9 @@ struct OrthoMatchCounts {
   std::int64_t textured = 0;    // both windows valid, template textured
   std::int64_t matched = 0;     // confident and unambiguous NCC peak
   std::int64_t tie_points = 0;  // of those, with ancillary and a mesh point
+  std::int64_t coarse_patches = 0;  // the coarse step's (coarse_ortho_shift.h)
+  std::int64_t coarse_matched = 0;
+  std::int64_t shifted = 0;  // textured patches searched around a coarse shift other than 0
 };
 
 // Steps 2-3 on two luminance images of one grid: tie points from the

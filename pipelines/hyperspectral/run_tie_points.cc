@@ -80,9 +80,11 @@ RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
 
   out.counts = matchOrthoImages(rgb_luma, combination.luma, ancillary, renderer, options,
                                 out.tie_points);
-  log << "tie points: " << out.counts.patches << " patches, " << out.counts.textured
-      << " textured, " << out.counts.matched << " matched, " << out.counts.tie_points
-      << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";
+  log << "tie points: coarse step " << out.counts.coarse_matched << " of "
+      << out.counts.coarse_patches << " large patches matched; " << out.counts.patches
+      << " patches, " << out.counts.textured << " textured (" << out.counts.shifted
+      << " searched around a coarse shift), " << out.counts.matched << " matched, "
+      << out.counts.tie_points << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";
   combination.luma.release();
   out.combination = std::move(combination);
   std::vector<double> shifts;

@@ -208,33 +208,36 @@ TEST(ExtrinsicRefinement, RejectsOutliers) {
   EXPECT_LT((result.T_C_U.t - trueExtrinsic().t).norm(), 0.005) << result.summary();
 }
 
-// A flat textured seabed 1.5 m square at down 2 m, 1 cm quads whose vertex
-// colours are random blobs, and the grid of 5 mm around it.
+// A flat textured seabed 2 half_size_m square at down 2 m, 1 cm quads whose
+// vertex colours are random blobs, and the grid of 5 mm around it.
 struct TexturedSeabed {
   UtmProjection projection{GeodeticPoint{43.0, 5.0, 0.0}};
   PlyMesh mesh;
   OrthoGrid grid;
 
-  TexturedSeabed() {
+  explicit TexturedSeabed(double half_size_m = 0.75) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<Eigen::Vector3d> blobs;  // north, east, radius
-    for (int i = 0; i < 400; ++i) {
-      blobs.emplace_back(-0.8 + 1.6 * unit(rng), -0.8 + 1.6 * unit(rng), 0.01 + 0.03 * unit(rng));
+    const double blob_reach = half_size_m + 0.05;
+    const int blob_count = int(std::lround(400.0 * blob_reach * blob_reach / (0.8 * 0.8)));
+    for (int i = 0; i < blob_count; ++i) {
+      blobs.emplace_back(-blob_reach + 2.0 * blob_reach * unit(rng),
+                         -blob_reach + 2.0 * blob_reach * unit(rng), 0.01 + 0.03 * unit(rng));
     }
     auto colour = [&](double n, double e) {
       double value = 60.0;
       for (const Eigen::Vector3d& blob : blobs) {
         const double d2 = (n - blob.x()) * (n - blob.x()) + (e - blob.y()) * (e - blob.y());
-        value += 150.0 * std::exp(-d2 / (2.0 * blob.z() * blob.z()));
+        if (d2 < 0.04) value += 150.0 * std::exp(-d2 / (2.0 * blob.z() * blob.z()));
       }
       const auto byte = std::uint8_t(std::clamp(value, 0.0, 255.0));
       return Eigen::Matrix<std::uint8_t, 3, 1>(byte, byte, std::uint8_t(byte / 2));
     };
-    const int cells = 150;
+    const int cells = int(std::lround(2.0 * half_size_m / 0.01));
     for (int i = 0; i <= cells; ++i) {
       for (int j = 0; j <= cells; ++j) {
-        const double n = -0.75 + 0.01 * i, e = -0.75 + 0.01 * j;
+        const double n = -half_size_m + 0.01 * i, e = -half_size_m + 0.01 * j;
         mesh.vertices.emplace_back(n, e, 2.0);
         mesh.colors.push_back(colour(n, e));
       }
@@ -247,32 +250,43 @@ struct TexturedSeabed {
       }
     }
     Eigen::AlignedBox2d box;
-    for (double n : {-0.75, 0.75})
-      for (double e : {-0.75, 0.75}) box.extend(projection.nedToUtm({n, e, 0.0}));
+    for (double n : {-half_size_m, half_size_m})
+      for (double e : {-half_size_m, half_size_m}) box.extend(projection.nedToUtm({n, e, 0.0}));
     grid = OrthoGrid::coveringUtm(box, 0.005, projection.zone(), projection.northernHemisphere());
+  }
+};
+
+// The seabed's RGB luminance, and a hyperspectral one: the same content
+// moved by `shift` pixels, with another gain and offset, NaN where nothing
+// moved in; ancillary: line = row, sample = 1000 + col, range 2 m.
+struct ShiftedOrthoPair {
+  cv::Mat rgb_luma, hyper_luma, ancillary;
+
+  ShiftedOrthoPair(const TexturedSeabed& seabed, const RgbOrthoRenderer& renderer,
+                   const Eigen::Vector2d& shift) {
+    cv::Mat bgra;
+    renderer.renderColours(0, 0, seabed.grid.cols, seabed.grid.rows, bgra);
+    rgb_luma = rgbLuminance(bgra);
+    const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, shift.x(), 0, 1, shift.y());
+    cv::warpAffine(rgb_luma, hyper_luma, move, rgb_luma.size(), cv::INTER_LINEAR,
+                   cv::BORDER_CONSTANT, cv::Scalar(std::numeric_limits<double>::quiet_NaN()));
+    hyper_luma = 0.01 * hyper_luma + 0.2;
+    ancillary = cv::Mat(rgb_luma.size(), CV_32FC4);
+    for (int r = 0; r < ancillary.rows; ++r)
+      for (int c = 0; c < ancillary.cols; ++c)
+        ancillary.at<cv::Vec4f>(r, c) = {float(r), 1000.0f + c, 2.0f, 0.0f};
   }
 };
 
 TEST(ExtrinsicRefinement, MatchingFindsTheShiftBetweenTheOrthoImagesAndTiesTheRightPixels) {
   const TexturedSeabed seabed;
   const RgbOrthoRenderer renderer(seabed.mesh, seabed.grid, seabed.projection);
-  cv::Mat bgra;
-  renderer.renderColours(0, 0, seabed.grid.cols, seabed.grid.rows, bgra);
-  const cv::Mat rgb_luma = rgbLuminance(bgra);
-  // The hyperspectral ortho-image: the same content moved by (7.3, -4.6)
-  // pixels, with another gain and offset.
+  // The hyperspectral ortho-image: the content moved by (7.3, -4.6) pixels.
   const Eigen::Vector2d shift(7.3, -4.6);
-  const cv::Mat move = (cv::Mat_<double>(2, 3) << 1, 0, shift.x(), 0, 1, shift.y());
-  cv::Mat hyper_luma;
-  cv::warpAffine(rgb_luma, hyper_luma, move, rgb_luma.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT,
-                 cv::Scalar(std::numeric_limits<double>::quiet_NaN()));
-  hyper_luma = 0.01 * hyper_luma + 0.2;
-  // Ancillary: line = row, sample = 1000 + col, range 2 m.
-  cv::Mat ancillary(rgb_luma.size(), CV_32FC4);
-  for (int r = 0; r < ancillary.rows; ++r)
-    for (int c = 0; c < ancillary.cols; ++c)
-      ancillary.at<cv::Vec4f>(r, c) = {float(r), 1000.0f + c, 2.0f, 0.0f};
-
+  const ShiftedOrthoPair images(seabed, renderer, shift);
+  const cv::Mat& rgb_luma = images.rgb_luma;
+  const cv::Mat& hyper_luma = images.hyper_luma;
+  const cv::Mat& ancillary = images.ancillary;
   std::vector<ExtrinsicTiePoint> ties;
   const OrthoMatchCounts counts =
       matchOrthoImages(rgb_luma, hyper_luma, ancillary, renderer, {}, ties);
@@ -292,6 +306,47 @@ TEST(ExtrinsicRefinement, MatchingFindsTheShiftBetweenTheOrthoImagesAndTiesTheRi
     EXPECT_NEAR(tie.p_W.z(), 2.0, 1e-4);
     EXPECT_GT(tie.ncc, 0.9);
   }
+}
+
+// A guess of T_C_U a few degrees off moves the whole hyperspectral image by
+// more than the lattice's search radius (0.15 m): the coarse step finds the
+// shift and each patch is searched around it.
+TEST(ExtrinsicRefinement, TheCoarseStepFindsAShiftBeyondTheSearchRadius) {
+  const TexturedSeabed seabed(1.5);
+  const RgbOrthoRenderer renderer(seabed.mesh, seabed.grid, seabed.projection);
+  const Eigen::Vector2d shift(44.3, -35.6);  // 0.22 m and -0.18 m
+  const ShiftedOrthoPair images(seabed, renderer, shift);
+  ExtrinsicRefinementOptions options;
+  ASSERT_GT(shift.norm() * seabed.grid.pixel_m, options.search_radius_m);
+
+  std::vector<ExtrinsicTiePoint> ties;
+  const OrthoMatchCounts counts = matchOrthoImages(images.rgb_luma, images.hyper_luma,
+                                                   images.ancillary, renderer, options, ties);
+  EXPECT_GT(counts.coarse_matched, counts.coarse_patches / 3);
+  // Patches with fewer than 3 coarse matches near them (by the empty band
+  // the shift leaves) are searched around no shift and find nothing.
+  EXPECT_GE(counts.shifted, counts.textured * 9 / 10);
+  EXPECT_GT(counts.textured, 100);
+  EXPECT_GE(counts.tie_points, counts.textured * 3 / 4);
+  // Sub-pixel by parabolas: within half a pixel (2.5 mm, half the 5 mm the
+  // solve assumes for a match).
+  for (const ExtrinsicTiePoint& tie : ties) {
+    EXPECT_LT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 0.5)
+        << tie.rgb_col_row.transpose();
+    EXPECT_NEAR(tie.line_position, tie.hyper_col_row.y(), 1e-3);
+  }
+
+  // Without the coarse step the true peak lies outside every search window.
+  options.coarse_pixel_m = 0.0;
+  std::vector<ExtrinsicTiePoint> fine_only;
+  const OrthoMatchCounts fine_counts = matchOrthoImages(
+      images.rgb_luma, images.hyper_luma, images.ancillary, renderer, options, fine_only);
+  EXPECT_EQ(fine_counts.coarse_patches, 0);
+  EXPECT_EQ(fine_counts.shifted, 0);
+  for (const ExtrinsicTiePoint& tie : fine_only) {
+    EXPECT_GT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 1.0);
+  }
+  EXPECT_LT(fine_counts.tie_points, counts.tie_points / 10);
 }
 
 TEST(ExtrinsicRefinement, BlankImagesGiveNoMatches) {
@@ -406,6 +461,17 @@ TEST(ExtrinsicRefinement, OptionsSayWhatIsWrong) {
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "ExtrinsicRefinementOptions: search_radius_m must be > 0, got 0");
   }
+  options = {};
+  options.coarse_search_radius_m = -0.1;
+  try {
+    options.validate();
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(),
+                 "ExtrinsicRefinementOptions: coarse_search_radius_m must be > 0, got -0.1");
+  }
+  options.coarse_pixel_m = 0.0;  // no coarse step: its other fields are not used
+  EXPECT_NO_THROW(options.validate());
 }
 
 }  // namespace
