@@ -55,6 +55,16 @@ std::pair<double, double> splineDeviation(const SE3Splined& spline,
   return {std::sqrt(sum_p / n), std::sqrt(sum_r / n) * 180.0 / std::numbers::pi};
 }
 
+std::pair<double, double> splineChange(const SE3Splined& before, const SE3Splined& after,
+                                       const std::vector<double>& times) {
+  std::vector<TimedPose> poses_before;
+  poses_before.reserve(times.size());
+  for (const double t : times) {
+    if (t >= before.validBegin() && t <= before.validEnd()) poses_before.push_back({t, before.pose(t)});
+  }
+  return splineDeviation(after, poses_before);
+}
+
 KnotSpacingChoice chooseKnotSpacing(const std::vector<TimedPose>& frames,
                                     const JointSplineOptions& options) {
   if (frames.size() < 2) {

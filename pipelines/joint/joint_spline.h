@@ -52,6 +52,12 @@ SE3Splined splineThroughPoses(const std::vector<TimedPose>& frames, double dt_s)
 std::pair<double, double> splineDeviation(const SE3Splined& spline,
                                           const std::vector<TimedPose>& frames);
 
+// RMS position (m) and rotation (deg) by which `after` differs from
+// `before` at the given times (those inside both splines' valid ranges):
+// how far a round of the joint stage moved the trajectory.
+std::pair<double, double> splineChange(const SE3Splined& before, const SE3Splined& after,
+                                       const std::vector<double>& times);
+
 // The knot spacing for these frames (see the header comment).
 KnotSpacingChoice chooseKnotSpacing(const std::vector<TimedPose>& frames,
                                     const JointSplineOptions& options = {});

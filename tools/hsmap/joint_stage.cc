@@ -251,9 +251,13 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
         inputs.T_C_U_start.q.angularDistance(joint.T_C_U.q) * kRadToDeg;
     const double translation_change_m = (inputs.T_C_U_start.t - joint.T_C_U.t).norm();
     const double time_change_s = std::abs(inputs.time_offset_start_s - joint.time_offset_s);
+    const auto [trajectory_change_m, trajectory_change_deg] =
+        splineChange(inputs.spline, joint.spline, survey.rgb.times());
     out << "joint: round " << round << ": " << found.tie_points.size() << " tie points, "
         << joint.tie_inliers << " inliers; T_C_U moved " << rotation_change_deg << " deg and "
-        << translation_change_m * 1000.0 << " mm, d moved " << time_change_s * 1000.0 << " ms\n";
+        << translation_change_m * 1000.0 << " mm, d moved " << time_change_s * 1000.0
+        << " ms, the trajectory " << trajectory_change_m * 1000.0 << " mm and "
+        << trajectory_change_deg << " deg (RMS over the frames)\n";
 
     const GeorefResult posed = posedFromSpline(georef, joint, survey.line_times);
     writeGeorefOutputs(options.out, posed);
@@ -280,8 +284,8 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     const bool bound_reached = std::any_of(joint.warnings.begin(), joint.warnings.end(),
                                            [](const std::string& w) { return w.find("bound") != std::string::npos; });
     if (!bound_reached && rotation_change_deg < 0.005 && translation_change_m < 0.0005 &&
-        time_change_s < 0.0002) {
-      out << "joint: T_C_U and d stopped moving after round " << round << "\n";
+        time_change_s < 0.0002 && trajectory_change_m < 0.0005 && trajectory_change_deg < 0.005) {
+      out << "joint: T_C_U, d and the trajectory stopped moving after round " << round << "\n";
       break;
     }
   }

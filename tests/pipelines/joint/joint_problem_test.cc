@@ -11,9 +11,11 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "core/geometry/pushbroom_camera.h"
+#include "core/geometry/so3.h"
 #include "pipelines/joint/joint_problem.h"
 #include "pipelines/joint/joint_spline.h"
 #include "tests/support/synthetic_transect.h"
@@ -290,6 +292,40 @@ TEST(JointSpline, SplineThroughPosesCoversTheFramesAndRejectsBadInput) {
   EXPECT_GE(spline.validEnd(), 2.0);
   EXPECT_THROW(splineThroughPoses({frames[0]}, 0.2), std::invalid_argument);
   EXPECT_THROW(splineThroughPoses(frames, 0.0), std::invalid_argument);
+}
+
+// A round's report: how far the trajectory moved. Control points moved by
+// 1 mm along x move every pose by 1 mm; rotated by 0.1 deg about the
+// camera's axis, every pose by 0.1 deg.
+TEST(JointSpline, SplineChangeMeasuresHowFarARoundMovedTheTrajectory) {
+  const SE3d T_B_C = test::cameraOnBody();
+  std::vector<TimedPose> frames;
+  std::vector<double> times;
+  for (int k = 0; k <= 50; ++k) {
+    frames.push_back({k * 0.04, test::vehicleMotion({}, k * 0.04) * T_B_C});
+    times.push_back(k * 0.04);
+  }
+  times.push_back(-5.0);  // outside both splines: left out
+  const SE3Splined before = splineThroughPoses(frames, 0.2);
+  const auto [same_m, same_deg] = splineChange(before, before, times);
+  EXPECT_NEAR(same_m, 0.0, 1e-12);
+  EXPECT_NEAR(same_deg, 0.0, 1e-9);
+
+  std::vector<SE3d> shifted, turned;
+  const SE3d turn(expSO3(Eigen::Vector3d(0.0, 0.0, 0.1 * std::numbers::pi / 180.0)),
+                  Eigen::Vector3d::Zero());
+  for (const SE3d& T : before.controlPoints()) {
+    shifted.push_back(SE3d(T.q, T.t + Eigen::Vector3d(0.001, 0.0, 0.0)));
+    turned.push_back(T * turn);
+  }
+  const auto [shift_m, shift_deg] =
+      splineChange(before, SE3Splined(before.t0(), before.dt(), shifted), times);
+  EXPECT_NEAR(shift_m, 0.001, 1e-9);
+  EXPECT_NEAR(shift_deg, 0.0, 1e-6);
+  const auto [turn_m, turn_deg] =
+      splineChange(before, SE3Splined(before.t0(), before.dt(), turned), times);
+  EXPECT_NEAR(turn_m, 0.0, 1e-9);
+  EXPECT_NEAR(turn_deg, 0.1, 1e-6);
 }
 
 }  // namespace
