@@ -24,12 +24,29 @@ CoarseOrthoShift::CoarseOrthoShift(const PreparedImage& rgb, const PreparedImage
     : min_matches_(options.coarse_min_matches) {
   if (!(options.coarse_pixel_m > 0.0)) return;
   const int factor = std::max(1, int(std::lround(options.coarse_pixel_m / pixel_m)));
-  const double coarse_m = factor * pixel_m;
   const PreparedImage rgb_c = downsampled(rgb, factor);
   const PreparedImage hyper_c = downsampled(hyper, factor);
-  const int half = std::max(2, int(std::lround(0.5 * options.coarse_patch_size_m / coarse_m)));
-  const int radius = std::max(2, int(std::lround(options.coarse_search_radius_m / coarse_m)));
-  const int step = std::max(1, int(std::lround(options.coarse_spacing_m / coarse_m)));
+  // A swath narrower than the search windows (1.2 m at the defaults) leaves
+  // none of them wholly valid: try windows of half the size.
+  for (const double scale : {1.0, 0.5}) {
+    matchLattice(rgb_c, hyper_c, factor, pixel_m, scale, options);
+    if (matched() >= min_matches_) break;
+  }
+}
+
+void CoarseOrthoShift::matchLattice(const PreparedImage& rgb_c, const PreparedImage& hyper_c,
+                                    int factor, double pixel_m, double scale,
+                                    const ExtrinsicRefinementOptions& options) {
+  centres_.clear();
+  shifts_.clear();
+  patches_ = 0;
+  scale_ = scale;
+  const double coarse_m = factor * pixel_m;
+  const int half =
+      std::max(2, int(std::lround(0.5 * scale * options.coarse_patch_size_m / coarse_m)));
+  const int radius =
+      std::max(2, int(std::lround(scale * options.coarse_search_radius_m / coarse_m)));
+  const int step = std::max(1, int(std::lround(scale * options.coarse_spacing_m / coarse_m)));
   const int size = 2 * half + 1;
   const int margin = half + radius;
   // The lattice's exclusion disc is in fine pixels; at least 2 coarse ones.

@@ -22,8 +22,10 @@ class CoarseOrthoShift {
   // options.coarse_spacing_m, searched in `hyper` within
   // +-options.coarse_search_radius_m on both images resampled to about
   // options.coarse_pixel_m, with the lattice's NCC tests. Both images are on
-  // one grid of pixel_m. coarse_pixel_m = 0: no coarse matches (shiftAt
-  // always nullopt).
+  // one grid of pixel_m. With fewer than options.coarse_min_matches matches
+  // (a swath narrower than the search windows leaves none wholly valid),
+  // again with patches, spacing and search radius halved. coarse_pixel_m =
+  // 0: no coarse matches (shiftAt always nullopt).
   CoarseOrthoShift(const PreparedImage& rgb, const PreparedImage& hyper, double pixel_m,
                    const ExtrinsicRefinementOptions& options);
 
@@ -34,9 +36,16 @@ class CoarseOrthoShift {
   std::optional<Eigen::Vector2d> shiftAt(const Eigen::Vector2d& g) const;
 
   std::int64_t patches() const { return patches_; }
+  // 1 for the options' sizes, 0.5 when the halved windows were used.
+  double scale() const { return scale_; }
   std::int64_t matched() const { return std::int64_t(centres_.size()); }
 
  private:
+  // One lattice of coarse patches at `scale` times the options' sizes,
+  // replacing any earlier one.
+  void matchLattice(const PreparedImage& rgb_c, const PreparedImage& hyper_c, int factor,
+                    double pixel_m, double scale, const ExtrinsicRefinementOptions& options);
+
   std::vector<Eigen::Vector2d> centres_;  // fine pixels, row-major lattice order
   std::vector<Eigen::Vector2d> shifts_;   // fine pixels
   std::vector<int> cell_of_;              // lattice cell -> index in centres_, -1 none
@@ -45,6 +54,7 @@ class CoarseOrthoShift {
   double neighbourhood_px_ = 0.0;
   int min_matches_ = 1;
   std::int64_t patches_ = 0;
+  double scale_ = 1.0;
 };
 
 }  // namespace hsmap

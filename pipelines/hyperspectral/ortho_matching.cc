@@ -91,6 +91,7 @@ OrthoMatchCounts matchOrthoImages(const cv::Mat& rgb_luma, const cv::Mat& hyper_
   OrthoMatchCounts counts;
   counts.coarse_patches = coarse.patches();
   counts.coarse_matched = coarse.matched();
+  counts.coarse_scale = coarse.scale();
   cv::Mat scores;
   for (int cy = margin; cy + margin < grid.rows; cy += step) {
     for (int cx = margin; cx + margin < grid.cols; cx += step) {

@@ -23,6 +23,7 @@ struct OrthoMatchCounts {
   std::int64_t tie_points = 0;  // of those, with ancillary and a mesh point
   std::int64_t coarse_patches = 0;  // the coarse step's (coarse_ortho_shift.h)
   std::int64_t coarse_matched = 0;
+  double coarse_scale = 1.0;  // 0.5: the coarse step's halved windows were used
   std::int64_t shifted = 0;  // textured patches searched around a coarse shift other than 0
 };
 

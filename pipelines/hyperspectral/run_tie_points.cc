@@ -81,7 +81,9 @@ RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
   out.counts = matchOrthoImages(rgb_luma, combination.luma, ancillary, renderer, options,
                                 out.tie_points);
   log << "tie points: coarse step " << out.counts.coarse_matched << " of "
-      << out.counts.coarse_patches << " large patches matched; " << out.counts.patches
+      << out.counts.coarse_patches << " large patches matched"
+      << (out.counts.coarse_scale < 1.0 ? " (at half size: the swath is narrow)" : "") << "; "
+      << out.counts.patches
       << " patches, " << out.counts.textured << " textured (" << out.counts.shifted
       << " searched around a coarse shift), " << out.counts.matched << " matched, "
       << out.counts.tie_points << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";

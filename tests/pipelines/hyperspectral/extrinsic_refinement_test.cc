@@ -322,6 +322,7 @@ TEST(ExtrinsicRefinement, TheCoarseStepFindsAShiftBeyondTheSearchRadius) {
   std::vector<ExtrinsicTiePoint> ties;
   const OrthoMatchCounts counts = matchOrthoImages(images.rgb_luma, images.hyper_luma,
                                                    images.ancillary, renderer, options, ties);
+  EXPECT_EQ(counts.coarse_scale, 1.0);
   EXPECT_GT(counts.coarse_matched, counts.coarse_patches / 3);
   // Patches with fewer than 3 coarse matches near them (by the empty band
   // the shift leaves) are searched around no shift and find nothing.
@@ -347,6 +348,42 @@ TEST(ExtrinsicRefinement, TheCoarseStepFindsAShiftBeyondTheSearchRadius) {
     EXPECT_GT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 1.0);
   }
   EXPECT_LT(fine_counts.tie_points, counts.tie_points / 10);
+}
+
+// A swath narrower than the coarse search windows (1.2 m): none of them is
+// wholly valid, so the coarse step matches again with windows of half the
+// size, and still finds a shift beyond the lattice's search radius.
+TEST(ExtrinsicRefinement, OnANarrowSwathTheCoarseStepUsesHalfSizeWindows) {
+  const TexturedSeabed seabed(1.5);
+  const RgbOrthoRenderer renderer(seabed.mesh, seabed.grid, seabed.projection);
+  const Eigen::Vector2d shift(35.3, -8.4);  // 0.18 m and -0.04 m
+  ShiftedOrthoPair images(seabed, renderer, shift);
+  // The hyperspectral image only on a band of columns 0.9 m wide.
+  const int band0 = images.hyper_luma.cols / 2 - 90, band1 = images.hyper_luma.cols / 2 + 90;
+  images.hyper_luma.colRange(0, band0).setTo(std::numeric_limits<double>::quiet_NaN());
+  images.hyper_luma.colRange(band1, images.hyper_luma.cols)
+      .setTo(std::numeric_limits<double>::quiet_NaN());
+  ExtrinsicRefinementOptions options;
+  ASSERT_GT(std::abs(shift.x()) * seabed.grid.pixel_m, options.search_radius_m);
+
+  std::vector<ExtrinsicTiePoint> ties;
+  const OrthoMatchCounts counts = matchOrthoImages(images.rgb_luma, images.hyper_luma,
+                                                   images.ancillary, renderer, options, ties);
+  EXPECT_EQ(counts.coarse_scale, 0.5);
+  EXPECT_GE(counts.coarse_matched, options.coarse_min_matches);
+  EXPECT_GT(counts.tie_points, 20);
+  for (const ExtrinsicTiePoint& tie : ties) {
+    EXPECT_LT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 0.5)
+        << tie.rgb_col_row.transpose();
+  }
+
+  options.coarse_pixel_m = 0.0;
+  std::vector<ExtrinsicTiePoint> fine_only;
+  matchOrthoImages(images.rgb_luma, images.hyper_luma, images.ancillary, renderer, options,
+                   fine_only);
+  for (const ExtrinsicTiePoint& tie : fine_only) {
+    EXPECT_GT((tie.hyper_col_row - tie.rgb_col_row - shift).norm(), 1.0);
+  }
 }
 
 TEST(ExtrinsicRefinement, BlankImagesGiveNoMatches) {
