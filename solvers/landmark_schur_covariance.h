@@ -14,7 +14,9 @@
 //   point3  3x3 (metres^2), scalar 1x1, vector n x n (stored units)
 // and zero blocks (and correlations) for variables held constant.
 //
-// How. J comes from one ceres::Problem::Evaluate() over the free blocks,
+// How. J comes from ceres::Problem::Evaluate() over the free blocks, a pass
+// of options.residual_blocks_per_pass residual blocks at a time, each pass
+// reduced into H_cc, H_ll and H_lc below before the next, with columns
 // ordered [c | l]: c the reduced variables (poses, spline control points,
 // extrinsics, time offsets, intrinsics and the landmarks GraphProblem cannot
 // eliminate), l the landmarks GraphProblem::eliminatedLandmarks() (the Schur
@@ -37,8 +39,9 @@
 // products each (k: the reduced degrees of freedom the landmark's factors
 // touch).
 //
-// Why. Only the reduced system is dense: memory is the Jacobian (CRS, about
-// 12 bytes per non-zero, held twice while it is converted) plus n_c^2 doubles
+// Why. Only the reduced system is dense: memory is one pass's Jacobian (CRS,
+// about 12 bytes per non-zero, held twice while it is converted), the sparse
+// H_lc (the landmarks' couplings) plus n_c^2 doubles
 // for S (and n_c^2 more for S^-1 when a marginal call asks for as many
 // columns as S has), time is one Jacobian evaluation, the sparse products,
 // sum over landmarks of k^2 and n_c^3 / 3 for the Cholesky. For a survey

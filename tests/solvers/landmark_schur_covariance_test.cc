@@ -212,6 +212,28 @@ TEST(LandmarkSchurCovariance, RobustLossIsAppliedAsByCeres) {
   EXPECT_GT(relativeError(robust, plain), 1e-3);
 }
 
+TEST(LandmarkSchurCovariance, PassesOfAFewResidualBlocksGiveTheOnePassResult) {
+  // The Jacobian reduced a few residual blocks at a time (a landmark's
+  // observations, and the reduced variables' factors, split across passes)
+  // against one pass over all of them and against sparse_qr.
+  Scene scene = makeScene(RobustLoss::cauchy(1.0));
+  ASSERT_GT(scene.graph.size(), 50u);
+  GraphProblem problem(scene.graph, scene.values);
+  const std::vector<Key> keys{X(2), E(0), D(0), L(3), L(6), L(9)};
+  CovarianceOptions one_pass = optionsFor(Algorithm::landmark_schur);
+  one_pass.residual_blocks_per_pass = 1000000;
+  const Eigen::MatrixXd expected = jointMarginalCovariance(problem, keys, one_pass);
+  const Eigen::MatrixXd reference =
+      jointMarginalCovariance(problem, keys, optionsFor(Algorithm::sparse_qr));
+  EXPECT_LT(relativeError(expected, reference), kRelativeTolerance);
+  for (const std::size_t per_pass : {std::size_t(1), std::size_t(7), std::size_t(50)}) {
+    CovarianceOptions options = optionsFor(Algorithm::landmark_schur);
+    options.residual_blocks_per_pass = per_pass;
+    const Eigen::MatrixXd actual = jointMarginalCovariance(problem, keys, options);
+    EXPECT_LT(relativeError(actual, expected), 1e-12) << per_pass << " per pass";
+  }
+}
+
 TEST(LandmarkSchurCovariance, ConstantVariablesHaveZeroCovariance) {
   Scene scene = makeScene(RobustLoss::none());
   GraphProblemOptions options;
