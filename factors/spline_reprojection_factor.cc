@@ -3,6 +3,9 @@
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
+#include <memory>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/se3_bspline_jacobians.h"
@@ -28,8 +31,9 @@ std::vector<Key> keysOf(const SplineSegment& segment, Key landmark_p_W) {
 class SplineReprojectionCost final
     : public ceres::SizedCostFunction<SplineReprojectionFactor::kResidualDimension, P, P, P, P, 3> {
  public:
-  SplineReprojectionCost(double u, const Eigen::Vector2d& pixel, const PinholeRadtanCamera& camera)
-      : u_(u), pixel_(pixel), camera_(camera) {}
+  SplineReprojectionCost(double u, const Eigen::Vector2d& pixel,
+                         std::shared_ptr<const PinholeRadtanCamera> camera)
+      : u_(u), pixel_(pixel), camera_(std::move(camera)) {}
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
@@ -37,14 +41,14 @@ class SplineReprojectionCost final
     if (jacobians == nullptr) {
       // Residual only (line search, cost checks): the pose alone is cheaper.
       const Eigen::Vector2d predicted = projectPinhole(
-          evaluateSe3Spline(parameters, u_), p_W, camera_.intrinsics().data());
+          evaluateSe3Spline(parameters, u_), p_W, camera_->intrinsics().data());
       residuals[0] = predicted.x() - pixel_.x();
       residuals[1] = predicted.y() - pixel_.y();
       return true;
     }
     const SE3SplineJacobians spline = SE3SplineJacobians::fromBlocks(parameters, u_);
     ProjectionJacobians projection;
-    const Eigen::Vector2d predicted = projectWithJacobians(camera_, spline.pose(), p_W, &projection);
+    const Eigen::Vector2d predicted = projectWithJacobians(*camera_, spline.pose(), p_W, &projection);
     residuals[0] = predicted.x() - pixel_.x();
     residuals[1] = predicted.y() - pixel_.y();
 
@@ -68,7 +72,7 @@ class SplineReprojectionCost final
  private:
   double u_;
   Eigen::Vector2d pixel_;
-  PinholeRadtanCamera camera_;
+  std::shared_ptr<const PinholeRadtanCamera> camera_;
 };
 
 }  // namespace
@@ -77,11 +81,21 @@ SplineReprojectionFactor::SplineReprojectionFactor(const SplineTiming& spline, d
                                                    Key landmark_p_W, const Eigen::Vector2d& pixel,
                                                    const PinholeRadtanParameters& intrinsics,
                                                    NoiseModel noise, RobustLoss robust_loss)
+    : SplineReprojectionFactor(spline, t_frame, landmark_p_W, pixel,
+                               std::make_shared<const PinholeRadtanCamera>(intrinsics),
+                               std::move(noise), robust_loss) {}
+
+SplineReprojectionFactor::SplineReprojectionFactor(
+    const SplineTiming& spline, double t_frame, Key landmark_p_W, const Eigen::Vector2d& pixel,
+    std::shared_ptr<const PinholeRadtanCamera> camera, NoiseModel noise, RobustLoss robust_loss)
     : CeresFactor(keysOf(spline.segmentAt(t_frame), landmark_p_W), std::move(noise), robust_loss),
       t_frame_(t_frame),
       segment_(spline.segmentAt(t_frame)),
       pixel_(pixel),
-      camera_(intrinsics) {
+      camera_(std::move(camera)) {
+  if (camera_ == nullptr) {
+    throw std::invalid_argument("SplineReprojectionFactor: the camera is null");
+  }
   requireNoiseDimension("SplineReprojectionFactor", this->noise(), kResidualDimension);
   requireFinite("SplineReprojectionFactor", "pixel", pixel_);
 }
@@ -93,7 +107,7 @@ std::unique_ptr<ceres::CostFunction> SplineReprojectionFactor::createCostFunctio
 std::unique_ptr<ceres::CostFunction> SplineReprojectionFactor::createAutoDiffCostFunction() const {
   return std::make_unique<
       ceres::AutoDiffCostFunction<SplineReprojectionResidual, kResidualDimension, P, P, P, P, 3>>(
-      new SplineReprojectionResidual{segment_.u, pixel_, camera_.intrinsics()});
+      new SplineReprojectionResidual{segment_.u, pixel_, camera_->intrinsics()});
 }
 
 }  // namespace hsmap

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -125,7 +126,9 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   result.time_offset_s = in.time_offset_start_s;
   const SE3Splined& spline = in.spline;
   const SplineTiming timing = SplineTiming::of(spline);
-  const PinholeRadtanCamera rgb(in.rgb_camera);
+  // One camera for the millions of reprojection factors (and their cost functions).
+  const auto shared_rgb = std::make_shared<const PinholeRadtanCamera>(in.rgb_camera);
+  const PinholeRadtanCamera& rgb = *shared_rgb;
 
   // Cross-modal tie points first: without enough of them nothing is solved.
   std::vector<const JointTiePoint*> ties;
@@ -222,7 +225,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     for (const FrameObservationUse& o : observations) {
       if (!values.contains(L(std::uint64_t(o.landmark)))) continue;
       graph.emplace<SplineReprojectionFactor>(
-          timing, o.t, L(std::uint64_t(o.landmark)), o.pixel, in.rgb_camera,
+          timing, o.t, L(std::uint64_t(o.landmark)), o.pixel, shared_rgb,
           o.keyframe ? keyframe_pixel_noise : other_frame_pixel_noise, huber);
       ++result.reprojection_factors;
       if (o.keyframe) ++result.keyframe_reprojection_factors;

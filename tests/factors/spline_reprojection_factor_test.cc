@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -195,6 +196,41 @@ TEST(SplineReprojectionFactor, JacobiansOfSomeBlocksOnlyEqualThoseOfAFullEvaluat
   EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {false, true, false, true, false}));
   EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {true, false, true, false, true}));
   EXPECT_TRUE(test::partialJacobiansMatchFull(*cost, blocks, {false, false, false, false, true}));
+}
+
+TEST(SplineReprojectionFactor, ASharedCameraGivesWhatACameraOfItsOwnGives) {
+  std::mt19937 rng(74);
+  const SE3Splined spline = wobblyTrajectory(rng, 12);
+  const auto shared = std::make_shared<const PinholeRadtanCamera>(distortedCamera());
+  for (int trial = 0; trial < 5; ++trial) {
+    const double t_frame =
+        std::uniform_real_distribution<double>(spline.validBegin(), spline.validEnd())(rng);
+    const Eigen::Vector3d p_W =
+        spline.pose(t_frame) *
+        test::randomVector(rng, Eigen::Vector3d(-1.0, -0.7, 2.0), Eigen::Vector3d(1.0, 0.7, 8.0));
+    const Eigen::Vector2d pixel(300.0 + 10.0 * trial, 200.0);
+    const SplineReprojectionFactor own(SplineTiming::of(spline), t_frame, L(0), pixel,
+                                       distortedCamera(), pixelNoise());
+    const SplineReprojectionFactor with_shared(SplineTiming::of(spline), t_frame, L(0), pixel,
+                                               shared, pixelNoise());
+    const auto blocks = stateOf(spline, own.segment(), p_W);
+    const test::Evaluation a = evaluate(*own.createCostFunction(), blocks);
+    const test::Evaluation b = evaluate(*with_shared.createCostFunction(), blocks);
+    ASSERT_TRUE(a.ok && b.ok);
+    EXPECT_EQ(a.residual, b.residual) << "trial " << trial;
+    ASSERT_EQ(a.jacobians.size(), b.jacobians.size());
+    for (std::size_t k = 0; k < a.jacobians.size(); ++k) EXPECT_EQ(a.jacobians[k], b.jacobians[k]);
+    EXPECT_GT(a.residual.norm(), 1.0);  // a pixel off the projection: not a trivial zero
+  }
+  // The factors and their cost functions hold the one camera, not copies.
+  const SplineReprojectionFactor factor(SplineTiming::of(spline), kT0 + 2.5 * kDt, L(0),
+                                        Eigen::Vector2d(1.0, 2.0), shared, pixelNoise());
+  const auto cost = factor.createCostFunction();
+  EXPECT_EQ(shared.use_count(), 3);
+  EXPECT_THROW(SplineReprojectionFactor(SplineTiming::of(spline), kT0 + 2.5 * kDt, L(0),
+                                        Eigen::Vector2d(1.0, 2.0),
+                                        std::shared_ptr<const PinholeRadtanCamera>(), pixelNoise()),
+               std::invalid_argument);
 }
 
 TEST(SplineReprojectionFactor, RejectsAFrameOutsideTheSplineAndAWrongNoise) {
