@@ -207,12 +207,7 @@ void LandmarkSchur::evaluateAndReduce(GraphProblem& problem, const CovarianceOpt
         blocks[column / kLandmarkSize](row % kLandmarkSize, column % kLandmarkSize) += it.value();
       }
     }
-    const SparseRows H_lc_pass = J_l.transpose() * J_c;
-    if (begin == 0) {
-      H_lc = H_lc_pass;
-    } else {
-      H_lc = SparseRows(H_lc + H_lc_pass);
-    }
+    H_lc += SparseRows(J_l.transpose() * J_c);
   }
 
   // S = H_cc - sum over landmarks of B^T C^-1 B, B = the landmark's 3 rows
