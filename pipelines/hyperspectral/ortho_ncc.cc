@@ -20,6 +20,12 @@ double parabolaPeak(double a, double b, double c) {
 
 PreparedImage prepareForMatching(const cv::Mat& luma, double blur_sigma_px,
                                  double highpass_sigma_px) {
+  return prepareForMatching(luma, cv::Point2d(blur_sigma_px, blur_sigma_px),
+                            cv::Point2d(highpass_sigma_px, highpass_sigma_px));
+}
+
+PreparedImage prepareForMatching(const cv::Mat& luma, cv::Point2d blur_sigma_px,
+                                 cv::Point2d highpass_sigma_px) {
   PreparedImage out;
   out.valid = cv::Mat(luma.size(), CV_8U);
   double sum = 0.0, sum2 = 0.0;
@@ -41,14 +47,14 @@ PreparedImage prepareForMatching(const cv::Mat& luma, double blur_sigma_px,
   out.stddev = n > 1 ? std::sqrt(std::max(0.0, sum2 / double(n) - mean * mean)) : 0.0;
   out.blurred = luma.clone();
   out.blurred.setTo(cv::Scalar(mean), out.valid == 0);
-  if (blur_sigma_px > 0.0) {
-    cv::GaussianBlur(out.blurred, out.blurred, cv::Size(0, 0), blur_sigma_px, blur_sigma_px,
+  if (blur_sigma_px.x > 0.0 && blur_sigma_px.y > 0.0) {
+    cv::GaussianBlur(out.blurred, out.blurred, cv::Size(0, 0), blur_sigma_px.x, blur_sigma_px.y,
                      cv::BORDER_REFLECT);
   }
-  if (highpass_sigma_px > 0.0) {
+  if (highpass_sigma_px.x > 0.0 && highpass_sigma_px.y > 0.0) {
     cv::Mat background;
-    cv::GaussianBlur(out.blurred, background, cv::Size(0, 0), highpass_sigma_px, highpass_sigma_px,
-                     cv::BORDER_REFLECT);
+    cv::GaussianBlur(out.blurred, background, cv::Size(0, 0), highpass_sigma_px.x,
+                     highpass_sigma_px.y, cv::BORDER_REFLECT);
     out.blurred -= background;
     cv::Scalar mean, stddev;
     cv::meanStdDev(out.blurred, mean, stddev, out.valid);
@@ -87,6 +93,12 @@ bool allValid(const cv::Mat& valid, const cv::Rect& window) {
 
 std::optional<NccPeak> unambiguousPeak(const cv::Mat& scores, double min_ncc,
                                        double min_peak_margin, double exclusion_radius_px) {
+  return unambiguousPeak(scores, min_ncc, min_peak_margin,
+                         cv::Point2d(exclusion_radius_px, exclusion_radius_px));
+}
+
+std::optional<NccPeak> unambiguousPeak(const cv::Mat& scores, double min_ncc,
+                                       double min_peak_margin, cv::Point2d exclusion_radius_px) {
   double best = 0.0;
   cv::Point peak;
   cv::minMaxLoc(scores, nullptr, &best, nullptr, &peak);
@@ -94,13 +106,15 @@ std::optional<NccPeak> unambiguousPeak(const cv::Mat& scores, double min_ncc,
   if (peak.x <= 0 || peak.y <= 0 || peak.x >= scores.cols - 1 || peak.y >= scores.rows - 1) {
     return std::nullopt;
   }
-  const double exclusion2 = exclusion_radius_px * exclusion_radius_px;
+  // Outside the ellipse (x/rx)^2 + (y/ry)^2 <= 1 around the peak.
+  const double rx = std::max(exclusion_radius_px.x, 1e-9);
+  const double ry = std::max(exclusion_radius_px.y, 1e-9);
   double second = -1.0;
   for (int r = 0; r < scores.rows; ++r) {
     const float* row = scores.ptr<float>(r);
     for (int c = 0; c < scores.cols; ++c) {
-      const double d2 = double(c - peak.x) * (c - peak.x) + double(r - peak.y) * (r - peak.y);
-      if (d2 > exclusion2) second = std::max(second, double(row[c]));
+      const double dx = (c - peak.x) / rx, dy = (r - peak.y) / ry;
+      if (dx * dx + dy * dy > 1.0) second = std::max(second, double(row[c]));
     }
   }
   if (second > best - min_peak_margin) return std::nullopt;

@@ -20,6 +20,10 @@ struct PreparedImage {
 
 PreparedImage prepareForMatching(const cv::Mat& luma, double blur_sigma_px,
                                  double highpass_sigma_px);
+// The same with a sigma per axis (x: columns, y: rows), for images whose
+// pixels are not square on the ground (a push-broom strip: lines x samples).
+PreparedImage prepareForMatching(const cv::Mat& luma, cv::Point2d blur_sigma_px,
+                                 cv::Point2d highpass_sigma_px);
 
 // The same image resampled to 1/factor of its size (area average); a
 // coarse pixel is valid only when every fine pixel under it is.
@@ -37,5 +41,8 @@ struct NccPeak {
 };
 std::optional<NccPeak> unambiguousPeak(const cv::Mat& scores, double min_ncc,
                                        double min_peak_margin, double exclusion_radius_px);
+// The same with an elliptic exclusion zone (radius per axis, in pixels).
+std::optional<NccPeak> unambiguousPeak(const cv::Mat& scores, double min_ncc,
+                                       double min_peak_margin, cv::Point2d exclusion_radius_px);
 
 }  // namespace hsmap

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "core/geometry/pinhole_radtan_camera.h"
+#include "core/geometry/pushbroom_camera.h"
 #include "core/graph/factor_graph.h"
 #include "core/graph/key.h"
 #include "core/graph/values.h"
@@ -84,6 +85,38 @@ void forEachObservationOf(const FrameRecord& frame, bool keyframe_of_map, const 
   }
 }
 
+// RMS over the kept tie points of their residual at the solved values, on
+// the ground: the factor's (u_pred - u) / f and y_U / z_U times the range.
+void tieResidualsOnGround(const std::vector<const JointTiePoint*>& ties, const std::vector<bool>& keep,
+                          const JointInputs& in, const JointResult& solved, double& across_m,
+                          double& along_m) {
+  const PushbroomCamera camera(in.uhi_camera);
+  const SE3Splined& spline = solved.spline;
+  double sum_across = 0.0, sum_along = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < ties.size(); ++i) {
+    if (!keep[i]) continue;
+    const JointTiePoint& tie = *ties[i];
+    const double t_line = tie.t_recorded + solved.time_offset_s;
+    const double t_reference = tie.t_recorded + in.time_offset_start_s;
+    if (t_line < spline.validBegin() || t_line > spline.validEnd()) continue;
+    const Eigen::Vector3d p_W =
+        in.surface_trajectory != nullptr
+            ? Eigen::Vector3d(spline.pose(t_reference) *
+                              (in.surface_trajectory->pose(t_reference).inverse() * tie.p_W))
+            : tie.p_W;
+    const SE3d T_W_U = spline.pose(t_line) * solved.T_C_U;
+    const Eigen::Vector3d p_U = T_W_U.inverse() * p_W;
+    const Eigen::Vector2d predicted = camera.project(p_U);
+    const double range = p_U.norm();
+    sum_across += std::pow((predicted.x() - tie.sample) / in.uhi_camera.f * range, 2);
+    sum_along += std::pow(predicted.y() * range, 2);
+    ++n;
+  }
+  across_m = n > 0 ? std::sqrt(sum_across / double(n)) : 0.0;
+  along_m = n > 0 ? std::sqrt(sum_along / double(n)) : 0.0;
+}
+
 }  // namespace
 
 std::string JointResult::summary() const {
@@ -110,6 +143,9 @@ std::string JointResult::summary() const {
           << (*sigma_translation_m * 1000.0).transpose() << " mm, d " << *time_offset_sigma_s * 1000.0
           << " ms (covariance " << seconds_covariance << " s)\n";
     }
+    out << "  tie point residuals on the ground (RMS over the inliers): "
+        << rms_tie_across_m * 1000.0 << " mm across the line, " << rms_tie_along_m * 1000.0
+        << " mm along it\n";
   }
   for (const std::string& component : weakly_determined) {
     out << "  weakly determined by this survey: " << component << "\n";
@@ -256,7 +292,10 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       const JointTiePoint& tie = *ties[i];
       const double range = tie.range_m > 0.0 ? tie.range_m : kDefaultRangeM;
       const double sigma_across = options.sigma_match_m / range;
-      const Eigen::Vector2d sigmas(in.uhi_camera.f * sigma_across, sigma_across);
+      const double sigma_along =
+          (options.sigma_match_along_m > 0.0 ? options.sigma_match_along_m : options.sigma_match_m) /
+          range;
+      const Eigen::Vector2d sigmas(in.uhi_camera.f * sigma_across, sigma_along);
       const PushbroomObservation observation{tie.t_recorded, tie.sample};
       const NoiseModel noise = NoiseModel::fromSigmas(sigmas);
       const RobustLoss loss = RobustLoss::cauchy(options.tie_robust_scale);
@@ -336,6 +375,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   result.spline = SE3Splined(spline.t0(), spline.dt(), std::move(control_points));
   result.T_C_U = SE3d(values.poseRotation(E(0)).normalized(), values.poseTranslation(E(0)));
   result.time_offset_s = values.scalar(D(0));
+  tieResidualsOnGround(ties, keep, in, result, result.rms_tie_across_m, result.rms_tie_along_m);
   for (const auto& [id, count] : seen_by) {
     if (values.contains(L(std::uint64_t(id)))) {
       result.landmarks_W.emplace_back(id, values.point(L(std::uint64_t(id))));

@@ -72,7 +72,11 @@ struct JointOptions {
   // An observation farther than this from its landmark's projection at the
   // start is left out (it was an outlier of the front-end's PnP).
   double start_gate_px = 4.0;
-  double sigma_match_m = 0.005;  // a tie point's 1-sigma on the ground
+  double sigma_match_m = 0.005;  // a tie point's 1-sigma on the ground, across the line
+  // Along the line (the track) when > 0; else sigma_match_m. Tie points
+  // matched in the push-broom strip (strip_tie_points.h) are finer across
+  // the track than along it.
+  double sigma_match_along_m = 0.0;
   double tie_robust_scale = 3.0;  // Cauchy, in sigmas
   int min_tie_points = 20;
   int min_frames_in_support = 3;
@@ -144,7 +148,9 @@ struct JointResult {
   int tie_points_outside_spline = 0;
   int tie_inliers = 0;
   int tie_outliers = 0;
-  double rms_tie_u_before_px = 0.0, rms_tie_u_after_px = 0.0;
+  // The inlier tie points' residuals after the final solve, on the ground
+  // (metres at each pixel's range): RMS across and along the line.
+  double rms_tie_across_m = 0.0, rms_tie_along_m = 0.0;
   SolveReport first_solve, last_solve;
   double seconds_covariance = 0.0;
   std::vector<std::string> warnings;

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <numbers>
 #include <ostream>
@@ -18,6 +19,7 @@
 #include "pipelines/georef/georef_outputs.h"
 #include "pipelines/georef/sequential_georef.h"
 #include "pipelines/hyperspectral/extrinsic_refinement.h"
+#include "pipelines/hyperspectral/strip_tie_points.h"
 #include "pipelines/joint/joint_problem.h"
 #include "pipelines/joint/joint_spline.h"
 #include "tools/hsmap/run_stages.h"
@@ -216,12 +218,49 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
   const double overlap = std::max(1.0, tie_options.patch_size_m / tie_options.patch_spacing_m);
   joint_options.sigma_match_m *= overlap;
   joint_options.tie_robust_scale /= overlap;
+  // Tie points matched in the push-broom strip (rounds after the first):
+  // patches that do not overlap, so no inflation; finer across the track
+  // (the sensors' own pixels) than along it (the lines' spacing). The
+  // sigmas are the RMS residuals of these tie points after the solve on the
+  // presets (docs/JOINT.md, "Tie points").
+  JointOptions strip_joint_options;
+  strip_joint_options.sigma_match_m = 0.002;
+  strip_joint_options.sigma_match_along_m = 0.005;
+  const StripTiePointOptions strip_options;
+  const PushbroomCamera uhi_camera(uhi.camera);
+  const PinholeRadtanCamera rgb_camera(survey.config.rgb.camera);
+  BandCombination combination;
+  std::vector<LinePose> line_poses;
+  std::unique_ptr<MeshRayCaster> mesh;
   for (int round = 1; round <= options.joint_rounds; ++round) {
     const auto round_start = std::chrono::steady_clock::now();
     out << "joint: round " << round << " of " << options.joint_rounds << "\n";
-    const RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
-    inputs.tie_points = jointTiePoints(found.tie_points, survey.line_times);
-    const JointResult solved = solveJointProblem(inputs, joint_options);
+    std::vector<ExtrinsicTiePoint> round_ties;
+    const bool in_strip = round > 1 && options.joint_tie_points == "strip" && mesh != nullptr;
+    if (!in_strip) {
+      RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
+      round_ties = std::move(found.tie_points);
+      combination = std::move(found.combination);
+    } else {
+      StripTiePointInputs strip;
+      strip.cube = survey.cube.get();
+      strip.band_weights = combination.weights;
+      strip.band_offset = combination.offset;
+      strip.uhi_camera = &uhi_camera;
+      strip.lines = line_poses;
+      strip.mesh = mesh.get();
+      strip.frames = &survey.rgb;
+      strip.rgb_camera = &rgb_camera;
+      for (int i = 0; i < survey.rgb.frameCount(); ++i) {
+        const double t = survey.rgb.time(i);
+        if (t >= inputs.spline.validBegin() && t <= inputs.spline.validEnd()) {
+          strip.frame_poses.emplace_back(i, inputs.spline.pose(t));
+        }
+      }
+      round_ties = findStripTiePoints(strip, strip_options, out).tie_points;
+    }
+    inputs.tie_points = jointTiePoints(round_ties, survey.line_times);
+    const JointResult solved = solveJointProblem(inputs, in_strip ? strip_joint_options : joint_options);
     out << solved.summary();
     const SE3d G = ontoSurfaceFrame(solved.spline, surface_spline, frames);
     if (solved.solved) {
@@ -253,7 +292,8 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     const double time_change_s = std::abs(inputs.time_offset_start_s - joint.time_offset_s);
     const auto [trajectory_change_m, trajectory_change_deg] =
         splineChange(inputs.spline, joint.spline, survey.rgb.times());
-    out << "joint: round " << round << ": " << found.tie_points.size() << " tie points, "
+    out << "joint: round " << round << ": " << round_ties.size() << " tie points"
+        << (in_strip ? " (in the strip)" : " (between the ortho-images)") << ", "
         << joint.tie_inliers << " inliers; T_C_U moved " << rotation_change_deg << " deg and "
         << translation_change_m * 1000.0 << " mm, d moved " << time_change_s * 1000.0
         << " ms, the trajectory " << trajectory_change_m * 1000.0 << " mm and "
@@ -262,7 +302,7 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     const GeorefResult posed = posedFromSpline(georef, joint, survey.line_times);
     writeGeorefOutputs(options.out, posed);
     writeRunCalibration(calibration_yaml, jointCalibration(joint, round));
-    std::vector<LinePose> line_poses;
+    line_poses.clear();
     for (const GeorefLinePose& line : posed.lines) line_poses.push_back({line.line, line.t, line.T_W_U});
     // The surface again from the joint trajectory, so the lines are cast
     // onto a mesh made with the same poses (and the next round's tie points
@@ -272,8 +312,8 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     ply = readSurfaceMesh(options.out / results_paths::mesh_ply);
     surface_spline = joint.spline;
     out << "joint: casting the scan lines again\n";
-    const MeshRayCaster mesh(ply.vertices, ply.triangles);
-    report = castProducts(survey, line_poses, mesh, projection, options, false, out);
+    mesh = std::make_unique<MeshRayCaster>(ply.vertices, ply.triangles);
+    report = castProducts(survey, line_poses, *mesh, projection, options, false, out);
     cast = true;
 
     inputs.spline = joint.spline;

@@ -133,6 +133,12 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions& options) {
                       "when T_C_U and d stop moving)")
       ->default_val(options.joint_rounds)
       ->check(CLI::Range(1, 10));
+  command->add_option("--joint-tie-points", options.joint_tie_points,
+                      "joint: tie points of the rounds after the first: 'strip' (each push-broom "
+                      "strip matched against its prediction from the RGB frames) or 'ortho' (the "
+                      "RGB and hyperspectral ortho-images, as the first round)")
+      ->default_val(options.joint_tie_points)
+      ->check(CLI::IsMember({"strip", "ortho"}));
   command->add_option("--seabed-depth", options.seabed_depth_m,
                       "planar: the flat seabed's depth (z in W, metres down; default: estimated "
                       "from RGB frame pairs scaled by the INS)");
@@ -222,6 +228,7 @@ int runRunCommand(const RunOptions& options, std::ostream& out, std::ostream& er
   }
   if (indexOf(stages, "joint") >= first && indexOf(stages, "joint") <= last) {
     record.options["joint_rounds"] = std::to_string(options.joint_rounds);
+    record.options["joint_tie_points"] = options.joint_tie_points;
   }
 
   auto finishStage = [&](const std::string& name, double seconds) {

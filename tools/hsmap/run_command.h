@@ -58,6 +58,10 @@ struct RunOptions {
   // joint: rounds of tie points, joint solve and re-cast (fewer when T_C_U
   // and d stop moving).
   int joint_rounds = 3;
+  // joint: where rounds after the first find their tie points: "strip" (the
+  // push-broom strip against its prediction, strip_tie_points.h) or "ortho"
+  // (the two ortho-images, as the first round always does).
+  std::string joint_tie_points = "strip";
   // planar: the flat seabed's z in W (m, down); estimated when absent.
   std::optional<double> seabed_depth_m;
 };

@@ -1,0 +1,321 @@
+#include "pipelines/hyperspectral/strip_tie_points.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "core/io/envi_ignore_value.h"
+#include "core/util/message_text.h"
+#include "pipelines/hyperspectral/ortho_ncc.h"
+#include "pipelines/hyperspectral/scan_line_caster.h"
+#include "pipelines/hyperspectral/spectrum_validity.h"
+
+namespace hsmap {
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+double medianOf(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  const auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// The RGB frames as grey CV_32F images, decoded once each: the lines come
+// in time order, so the nearest frame only moves forward and the last few
+// decoded frames are all that is kept.
+class GreyFrames {
+ public:
+  explicit GreyFrames(const RgbFrameSource& source) : source_(source) {}
+
+  const cv::Mat& frame(int index) {
+    for (const auto& [i, grey] : kept_) {
+      if (i == index) return grey;
+    }
+    cv::Mat bgr = source_.frame(index);
+    cv::Mat grey8, grey;
+    cv::cvtColor(bgr, grey8, cv::COLOR_BGR2GRAY);
+    grey8.convertTo(grey, CV_32F);
+    ++decoded_;
+    kept_.emplace_back(index, std::move(grey));
+    if (kept_.size() > 3) kept_.pop_front();
+    return kept_.back().second;
+  }
+  int decoded() const { return decoded_; }
+
+ private:
+  const RgbFrameSource& source_;
+  std::deque<std::pair<int, cv::Mat>> kept_;
+  int decoded_ = 0;
+};
+
+// Bilinear value of a CV_32F image at (x, y), pixel centres at integers.
+float bilinear(const cv::Mat& image, double x, double y) {
+  const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  const float ax = float(x - x0), ay = float(y - y0);
+  const float* row0 = image.ptr<float>(y0);
+  const float* row1 = image.ptr<float>(y0 + 1);
+  return (1.0f - ay) * ((1.0f - ax) * row0[x0] + ax * row0[x0 + 1]) +
+         ay * ((1.0f - ax) * row1[x0] + ax * row1[x0 + 1]);
+}
+
+// Index into `poses` of the posed frame nearest in time to t.
+std::size_t nearestFrame(const std::vector<std::pair<int, SE3d>>& poses,
+                         const RgbFrameSource& frames, double t) {
+  const auto after = std::partition_point(poses.begin(), poses.end(), [&](const auto& pose) {
+    return frames.time(pose.first) < t;
+  });
+  std::size_t k = std::size_t(after - poses.begin());
+  if (k == poses.size()) return k - 1;
+  if (k > 0 && t - frames.time(poses[k - 1].first) < frames.time(poses[k].first) - t) --k;
+  return k;
+}
+
+void require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("StripTiePointOptions: " + what);
+}
+
+}  // namespace
+
+void StripTiePointOptions::validate() const {
+  require(sample_step >= 1, "sample_step must be >= 1");
+  require(patch_lines >= 3 && patch_columns >= 3, "patch_lines and patch_columns must be >= 3");
+  require(search_lines >= 1 && search_columns >= 1, "search_lines and search_columns must be >= 1");
+  require(blur_sigma_m >= 0.0 && highpass_sigma_m >= 0.0,
+          "blur_sigma_m and highpass_sigma_m must be >= 0");
+  require(min_ncc > 0.0 && min_ncc <= 1.0, "min_ncc must be in (0, 1]");
+  require(min_peak_margin >= 0.0 && exclusion_radius_m >= 0.0 && min_template_std >= 0.0 &&
+              frame_margin_px >= 0.0,
+          "min_peak_margin, exclusion_radius_m, min_template_std and frame_margin_px must be >= 0");
+  require(max_range_step_m > 0.0, "max_range_step_m must be > 0");
+}
+
+StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTiePointOptions& o,
+                                  std::ostream& log) {
+  o.validate();
+  if (in.cube == nullptr || in.uhi_camera == nullptr || in.mesh == nullptr ||
+      in.frames == nullptr || in.rgb_camera == nullptr) {
+    throw std::invalid_argument("findStripTiePoints: an input (cube, cameras, mesh, frames) is missing");
+  }
+  const EnviReader& cube = *in.cube;
+  const int samples = in.uhi_camera->samples();
+  const int bands = cube.bands();
+  if (cube.samples() != samples) {
+    throw std::invalid_argument("findStripTiePoints: the cube has " + std::to_string(cube.samples()) +
+                                " samples, the UHI camera " + std::to_string(samples));
+  }
+  if (int(in.band_weights.size()) != bands) {
+    throw std::invalid_argument("findStripTiePoints: " + std::to_string(in.band_weights.size()) +
+                                " band weights for a cube of " + std::to_string(bands) + " bands");
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  StripTiePoints out;
+  const int step = o.sample_step;
+  const int cols = samples / step;
+  const int rows = int(in.lines.size());
+  if (rows < o.patch_lines + 2 * o.search_lines || cols < o.patch_columns + 2 * o.search_columns ||
+      in.frame_poses.empty()) {
+    log << "strip tie points: too few lines, samples or posed frames for one patch\n";
+    return out;
+  }
+
+  std::vector<int> used_bands;
+  for (int b = 0; b < bands; ++b) {
+    if (in.band_weights[std::size_t(b)] != 0.0) used_bands.push_back(b);
+  }
+  const std::optional<float> ignore = enviDataIgnoreValue(cube.header(), cube.headerPath());
+
+  // 1. Both strips and the surface point of every column, line by line.
+  cv::Mat real(rows, cols, CV_32F, cv::Scalar(kNaN));
+  cv::Mat predicted(rows, cols, CV_32F, cv::Scalar(kNaN));
+  const Eigen::Vector3f no_hit = Eigen::Vector3f::Constant(kNaN);
+  std::vector<Eigen::Vector3f> hit_W(std::size_t(rows) * std::size_t(cols), no_hit);
+  auto hitAt = [&](int r, int c) -> Eigen::Vector3f& { return hit_W[std::size_t(r) * cols + c]; };
+
+  const ScanLineCaster caster(*in.uhi_camera, *in.mesh);
+  GreyFrames grey_frames(*in.frames);
+  std::vector<float> pixel_major(std::size_t(samples) * std::size_t(bands));
+  std::vector<std::uint8_t> non_finite(static_cast<std::size_t>(samples));
+  std::vector<std::uint8_t> ignored(static_cast<std::size_t>(samples));
+  std::vector<ScanLineHits> hits;
+  std::vector<std::int64_t> chunk_lines;
+  std::vector<SE3d> chunk_poses;
+  constexpr int kChunk = 128;
+  for (int first = 0; first < rows; first += kChunk) {
+    const int count = std::min(kChunk, rows - first);
+    chunk_lines.clear();
+    chunk_poses.clear();
+    for (int k = 0; k < count; ++k) {
+      chunk_lines.push_back(in.lines[std::size_t(first + k)].line);
+      chunk_poses.push_back(in.lines[std::size_t(first + k)].T);
+    }
+    caster.castLines(chunk_lines, chunk_poses, hits);
+    for (int k = 0; k < count; ++k) {
+      const int i = first + k;
+      const LinePose& line = in.lines[std::size_t(i)];
+      // The real strip: the band combination of each sample, averaged over
+      // the column; a column with an unusable spectrum stays NaN.
+      cube.readLinePixelMajor(int(line.line), pixel_major.data());
+      markInvalidSamples(pixel_major.data(), bands, samples, ignore, non_finite.data(),
+                         ignored.data());
+      float* real_row = real.ptr<float>(i);
+      for (int c = 0; c < cols; ++c) {
+        double sum = 0.0;
+        bool usable = true;
+        for (int s = c * step; s < (c + 1) * step && usable; ++s) {
+          usable = non_finite[std::size_t(s)] == 0 && ignored[std::size_t(s)] == 0;
+          double value = in.band_offset;
+          const float* spectrum = pixel_major.data() + std::size_t(s) * std::size_t(bands);
+          for (const int b : used_bands) value += in.band_weights[std::size_t(b)] * spectrum[b];
+          sum += value;
+        }
+        if (usable) real_row[c] = float(sum / step);
+      }
+      // The prediction: each hit seen by the frame nearest in time.
+      const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, line.t)];
+      const cv::Mat& grey = grey_frames.frame(frame_index);
+      const SE3d T_C_W = T_W_C.inverse();
+      const double x_max = grey.cols - 1 - o.frame_margin_px, y_max = grey.rows - 1 - o.frame_margin_px;
+      const ScanLineHits& line_hits = hits[std::size_t(k)];
+      float* predicted_row = predicted.ptr<float>(i);
+      for (int c = 0; c < cols; ++c) {
+        Eigen::Vector3d sum_W = Eigen::Vector3d::Zero();
+        double sum_grey = 0.0;
+        bool all_hit = true, all_seen = true;
+        for (int s = c * step; s < (c + 1) * step && all_hit; ++s) {
+          all_hit = line_hits.hit(s);
+          if (!all_hit) break;
+          const Eigen::Vector3d& p_W = line_hits.p_W[std::size_t(s)];
+          sum_W += p_W;
+          const Eigen::Vector3d p_C = T_C_W * p_W;
+          if (!all_seen || p_C.z() <= 0.0) {
+            all_seen = false;
+            continue;
+          }
+          const Eigen::Vector2d uv = in.rgb_camera->project(p_C);
+          if (!(uv.x() >= o.frame_margin_px && uv.y() >= o.frame_margin_px && uv.x() <= x_max &&
+                uv.y() <= y_max)) {
+            all_seen = false;
+            continue;
+          }
+          sum_grey += bilinear(grey, uv.x(), uv.y());
+        }
+        if (!all_hit) continue;
+        hitAt(i, c) = (sum_W / step).cast<float>();
+        if (all_seen) predicted_row[c] = float(sum_grey / step);
+      }
+    }
+  }
+  out.counts.frames_decoded = grey_frames.decoded();
+
+  // 2. The strip's pixel on the ground, to state the band-pass in metres.
+  std::vector<double> across, along;
+  for (int r = 0; r + 1 < rows; r += 4) {
+    for (int c = cols / 4; c < 3 * cols / 4; c += 16) {
+      const Eigen::Vector3f& p = hitAt(r, c);
+      const float a = (hitAt(r, c + 1) - p).norm(), b = (hitAt(r + 1, c) - p).norm();
+      if (std::isfinite(a)) across.push_back(a);
+      if (std::isfinite(b)) along.push_back(b);
+    }
+  }
+  out.counts.across_pixel_m = medianOf(across);
+  out.counts.along_pixel_m = medianOf(along);
+  if (!(out.counts.across_pixel_m > 0.0) || !(out.counts.along_pixel_m > 0.0)) {
+    log << "strip tie points: the scan lines do not hit the surface\n";
+    return out;
+  }
+  const cv::Point2d metre_to_px(1.0 / out.counts.across_pixel_m, 1.0 / out.counts.along_pixel_m);
+  const cv::Point2d blur = o.blur_sigma_m * metre_to_px, highpass = o.highpass_sigma_m * metre_to_px;
+  const PreparedImage real_image = prepareForMatching(real, blur, highpass);
+  real.release();
+  const PreparedImage predicted_image = prepareForMatching(predicted, blur, highpass);
+  predicted.release();
+  const cv::Point2d exclusion = o.exclusion_radius_m * metre_to_px;
+
+  // 3. Each patch of the real strip searched in the prediction.
+  const double min_std = o.min_template_std * real_image.stddev;
+  const int H = o.patch_lines, W = o.patch_columns, SL = o.search_lines, SC = o.search_columns;
+  cv::Mat scores;
+  auto lineIndexAt = [&](double row) {
+    const int a = std::clamp(int(std::floor(row)), 0, rows - 2);
+    const double alpha = row - a;
+    return double(in.lines[std::size_t(a)].line) +
+           alpha * double(in.lines[std::size_t(a + 1)].line - in.lines[std::size_t(a)].line);
+  };
+  for (int r0 = SL; r0 + H + SL <= rows; r0 += H) {
+    for (int c0 = SC; c0 + W + SC <= cols; c0 += W) {
+      const cv::Rect patch(c0, r0, W, H);
+      const cv::Rect search(c0 - SC, r0 - SL, W + 2 * SC, H + 2 * SL);
+      if (!allValid(real_image.valid, patch) || !allValid(predicted_image.valid, search)) continue;
+      ++out.counts.patches;
+      const cv::Mat templ = real_image.blurred(patch);
+      cv::Scalar mean, stddev;
+      cv::meanStdDev(templ, mean, stddev);
+      if (stddev[0] < min_std || stddev[0] <= 0.0) continue;
+      ++out.counts.textured;
+      cv::matchTemplate(predicted_image.blurred(search), templ, scores, cv::TM_CCOEFF_NORMED);
+      const std::optional<NccPeak> peak =
+          unambiguousPeak(scores, o.min_ncc, o.min_peak_margin, exclusion);
+      if (!peak) continue;
+      ++out.counts.matched;
+      // The real patch's centre pixel and where the prediction put it.
+      const double real_row = r0 + (H - 1) / 2.0, real_col = c0 + (W - 1) / 2.0;
+      const double row = real_row + peak->y - SL, col = real_col + peak->x - SC;
+      const int r = int(std::floor(row)), c = int(std::floor(col));
+      if (r < 0 || c < 0 || r + 1 >= rows || c + 1 >= cols) continue;
+      const double ar = row - r, ac = col - c;
+      const Eigen::Vector3f corners[4] = {hitAt(r, c), hitAt(r, c + 1), hitAt(r + 1, c),
+                                          hitAt(r + 1, c + 1)};
+      double range_min = std::numeric_limits<double>::infinity(), range_max = -range_min;
+      bool finite = true;
+      for (int k = 0; k < 4; ++k) {
+        finite = finite && corners[k].allFinite();
+        const SE3d& T_W_U = in.lines[std::size_t(r + k / 2)].T;
+        const double range = (corners[k].cast<double>() - T_W_U.t).norm();
+        range_min = std::min(range_min, range);
+        range_max = std::max(range_max, range);
+      }
+      if (!finite || !(range_max - range_min <= o.max_range_step_m)) continue;
+      const Eigen::Vector3d p_W =
+          ((1.0 - ar) * ((1.0 - ac) * corners[0] + ac * corners[1]) +
+           ar * ((1.0 - ac) * corners[2] + ac * corners[3]))
+              .cast<double>();
+      ExtrinsicTiePoint tie;
+      tie.line_position = lineIndexAt(real_row);
+      tie.line = std::llround(tie.line_position);
+      tie.sample = real_col * step + (step - 1) / 2.0;
+      const SE3d& T_W_U = in.lines[std::size_t(std::lround(real_row))].T;
+      tie.range_m = (p_W - T_W_U.t).norm();
+      tie.p_W = p_W;
+      tie.hyper_col_row = Eigen::Vector2d(real_col, real_row);
+      tie.rgb_col_row = Eigen::Vector2d(col, row);
+      tie.ncc = peak->ncc;
+      out.tie_points.push_back(tie);
+    }
+  }
+  out.counts.tie_points = int(out.tie_points.size());
+  log << "strip tie points: " << rows << " lines x " << cols << " columns (pixel "
+      << fixedDecimals(out.counts.across_pixel_m * 1000.0, 2) << " mm across, "
+      << fixedDecimals(out.counts.along_pixel_m * 1000.0, 2) << " mm along), "
+      << out.counts.frames_decoded << " RGB frames; " << out.counts.patches << " patches, "
+      << out.counts.textured << " textured, " << out.counts.matched << " matched, "
+      << out.counts.tie_points << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";
+  return out;
+}
+
+}  // namespace hsmap
