@@ -251,6 +251,7 @@ TEST_F(RunAndEvaluate, JointWithTooFewTiePointsKeepsTheSequentialResultAndSaysWh
   EXPECT_NE(calibration.warnings[1].find("cross-modal tie points (need 20)"), std::string::npos)
       << calibration.warnings[1];
   EXPECT_EQ(readRunRecord(joint / "run.yaml").options.at("joint_rounds"), "3");
+  EXPECT_EQ(readRunRecord(joint / "run.yaml").options.at("joint_tie_points"), "strip");
 
   const RunResult evaluate = runHsmap(
       temp_, "evaluate " + quoted(joint.string()) + " --truth " + quoted((tinySurvey() / "truth").string()));

@@ -236,12 +236,10 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
     const auto round_start = std::chrono::steady_clock::now();
     out << "joint: round " << round << " of " << options.joint_rounds << "\n";
     std::vector<ExtrinsicTiePoint> round_ties;
-    const bool in_strip = round > 1 && options.joint_tie_points == "strip" && mesh != nullptr;
-    if (!in_strip) {
-      RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
-      round_ties = std::move(found.tie_points);
-      combination = std::move(found.combination);
-    } else {
+    // The strip's search reaches a few centimetres: the first round (a
+    // guess up to degrees off) matches the ortho-images, coarse to fine.
+    bool in_strip = round > 1 && options.joint_tie_points == "strip" && mesh != nullptr;
+    if (in_strip) {
       StripTiePointInputs strip;
       strip.cube = survey.cube.get();
       strip.band_weights = combination.weights;
@@ -258,6 +256,17 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
         }
       }
       round_ties = findStripTiePoints(strip, strip_options, out).tie_points;
+      if (int(round_ties.size()) < strip_joint_options.min_tie_points) {
+        out << "joint: only " << round_ties.size() << " tie points in the strip (need "
+            << strip_joint_options.min_tie_points
+            << "); this round matches the ortho-images instead\n";
+        in_strip = false;
+      }
+    }
+    if (!in_strip) {
+      RunTiePoints found = collectTiePointsInRun(options.out, projection, tie_options, out);
+      round_ties = std::move(found.tie_points);
+      combination = std::move(found.combination);
     }
     inputs.tie_points = jointTiePoints(round_ties, survey.line_times);
     const JointResult solved = solveJointProblem(inputs, in_strip ? strip_joint_options : joint_options);
