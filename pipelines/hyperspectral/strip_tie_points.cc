@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/io/envi_ignore_value.h"
+#include "core/util/input_error.h"
 #include "core/util/message_text.h"
 #include "pipelines/hyperspectral/ortho_ncc.h"
 #include "pipelines/hyperspectral/scan_line_caster.h"
@@ -44,21 +45,28 @@ class GreyFrames {
     for (const auto& [i, grey] : kept_) {
       if (i == index) return grey;
     }
-    cv::Mat bgr = source_.frame(index);
-    cv::Mat grey8, grey;
-    cv::cvtColor(bgr, grey8, cv::COLOR_BGR2GRAY);
-    grey8.convertTo(grey, CV_32F);
-    ++decoded_;
+    cv::Mat grey;
+    try {
+      cv::Mat grey8;
+      cv::cvtColor(source_.frame(index), grey8, cv::COLOR_BGR2GRAY);
+      grey8.convertTo(grey, CV_32F);
+      ++decoded_;
+    } catch (const InputError&) {
+      // The front-end has reported it already; its lines predict nothing.
+      ++undecodable_;
+    }
     kept_.emplace_back(index, std::move(grey));
     if (kept_.size() > 3) kept_.pop_front();
     return kept_.back().second;
   }
   int decoded() const { return decoded_; }
+  int undecodable() const { return undecodable_; }
 
  private:
   const RgbFrameSource& source_;
   std::deque<std::pair<int, cv::Mat>> kept_;
   int decoded_ = 0;
+  int undecodable_ = 0;
 };
 
 // Bilinear value of a CV_32F image at (x, y), pixel centres at integers.
@@ -189,6 +197,7 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       // The prediction: each hit seen by the frame nearest in time.
       const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, line.t)];
       const cv::Mat& grey = grey_frames.frame(frame_index);
+      if (grey.empty()) continue;
       const SE3d T_C_W = T_W_C.inverse();
       const double x_max = grey.cols - 1 - o.frame_margin_px, y_max = grey.rows - 1 - o.frame_margin_px;
       const ScanLineHits& line_hits = hits[std::size_t(k)];
@@ -222,6 +231,7 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
     }
   }
   out.counts.frames_decoded = grey_frames.decoded();
+  out.counts.frames_undecodable = grey_frames.undecodable();
 
   // 2. The strip's pixel on the ground, to state the band-pass in metres.
   std::vector<double> across, along;
@@ -312,7 +322,11 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
   log << "strip tie points: " << rows << " lines x " << cols << " columns (pixel "
       << fixedDecimals(out.counts.across_pixel_m * 1000.0, 2) << " mm across, "
       << fixedDecimals(out.counts.along_pixel_m * 1000.0, 2) << " mm along), "
-      << out.counts.frames_decoded << " RGB frames; " << out.counts.patches << " patches, "
+      << out.counts.frames_decoded << " RGB frames"
+      << (out.counts.frames_undecodable > 0
+              ? " (" + std::to_string(out.counts.frames_undecodable) + " undecodable: their lines left out)"
+              : std::string())
+      << "; " << out.counts.patches << " patches, "
       << out.counts.textured << " textured, " << out.counts.matched << " matched, "
       << out.counts.tie_points << " tie points, " << fixedDecimals(seconds(), 1) << " s\n";
   return out;

@@ -91,6 +91,7 @@ struct StripTiePointCounts {
   int matched = 0;     // confident, unambiguous NCC peak
   int tie_points = 0;  // with a surface point interpolated at the match
   int frames_decoded = 0;
+  int frames_undecodable = 0;  // InputError from the frame source: their lines predict nothing
   double across_pixel_m = 0.0;  // median strip pixel on the ground, across the track
   double along_pixel_m = 0.0;   // and along it (line spacing)
 };
