@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/io/envi_ignore_value.h"
+#include "core/raycast/ray.h"
 #include "core/util/input_error.h"
 #include "core/util/message_text.h"
 #include "pipelines/hyperspectral/ortho_ncc.h"
@@ -91,6 +92,26 @@ std::size_t nearestFrame(const std::vector<std::pair<int, SE3d>>& poses,
   return k;
 }
 
+// The posed lines at a continuous row (between rows i and i + 1: the pose
+// interpolated, slerp and lerp, as a line exposed between the two).
+struct RowPose {
+  SE3d T;
+  double t = 0.0;
+  double line_position = 0.0;  // cube line index, continuous
+};
+RowPose poseAt(const std::vector<LinePose>& lines, double row) {
+  const int last = int(lines.size()) - 1;
+  const int i = std::clamp(int(std::floor(row)), 0, std::max(0, last - 1));
+  const double alpha = last == 0 ? 0.0 : std::clamp(row - i, 0.0, 1.0);
+  const LinePose& a = lines[std::size_t(i)];
+  const LinePose& b = lines[std::size_t(std::min(i + 1, last))];
+  RowPose out;
+  out.T = SE3d(a.T.q.slerp(alpha, b.T.q), (1.0 - alpha) * a.T.t + alpha * b.T.t);
+  out.t = (1.0 - alpha) * a.t + alpha * b.t;
+  out.line_position = (1.0 - alpha) * double(a.line) + alpha * double(b.line);
+  return out;
+}
+
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("StripTiePointOptions: " + what);
 }
@@ -107,7 +128,7 @@ void StripTiePointOptions::validate() const {
   require(min_peak_margin >= 0.0 && exclusion_radius_m >= 0.0 && min_template_std >= 0.0 &&
               frame_margin_px >= 0.0,
           "min_peak_margin, exclusion_radius_m, min_template_std and frame_margin_px must be >= 0");
-  require(max_range_step_m > 0.0, "max_range_step_m must be > 0");
+  require(line_phases >= 1 && line_phases <= 16, "line_phases must be in [1, 16]");
 }
 
 StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTiePointOptions& o,
@@ -148,9 +169,13 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
   }
   const std::optional<float> ignore = enviDataIgnoreValue(cube.header(), cube.headerPath());
 
-  // 1. Both strips and the surface point of every column, line by line.
+  // 1. The real strip, and the prediction at each phase of the line
+  // spacing (phase k: the poses interpolated k / P of the way to the next
+  // line), with the surface point of every column at phase 0.
+  const int P = o.line_phases;
   cv::Mat real(rows, cols, CV_32F, cv::Scalar(kNaN));
-  cv::Mat predicted(rows, cols, CV_32F, cv::Scalar(kNaN));
+  std::vector<cv::Mat> predicted;
+  for (int k = 0; k < P; ++k) predicted.emplace_back(rows, cols, CV_32F, cv::Scalar(kNaN));
   const Eigen::Vector3f no_hit = Eigen::Vector3f::Constant(kNaN);
   std::vector<Eigen::Vector3f> hit_W(std::size_t(rows) * std::size_t(cols), no_hit);
   auto hitAt = [&](int r, int c) -> Eigen::Vector3f& { return hit_W[std::size_t(r) * cols + c]; };
@@ -160,25 +185,28 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
   std::vector<float> pixel_major(std::size_t(samples) * std::size_t(bands));
   std::vector<std::uint8_t> non_finite(static_cast<std::size_t>(samples));
   std::vector<std::uint8_t> ignored(static_cast<std::size_t>(samples));
-  std::vector<ScanLineHits> hits;
+  std::vector<std::vector<ScanLineHits>> hits(static_cast<std::size_t>(P));
   std::vector<std::int64_t> chunk_lines;
   std::vector<SE3d> chunk_poses;
   constexpr int kChunk = 128;
   for (int first = 0; first < rows; first += kChunk) {
     const int count = std::min(kChunk, rows - first);
-    chunk_lines.clear();
-    chunk_poses.clear();
-    for (int k = 0; k < count; ++k) {
-      chunk_lines.push_back(in.lines[std::size_t(first + k)].line);
-      chunk_poses.push_back(in.lines[std::size_t(first + k)].T);
+    for (int k = 0; k < P; ++k) {
+      chunk_lines.clear();
+      chunk_poses.clear();
+      for (int j = 0; j < count; ++j) {
+        const int i = first + j;
+        chunk_lines.push_back(in.lines[std::size_t(i)].line);
+        chunk_poses.push_back(k == 0 || i + 1 >= rows ? in.lines[std::size_t(i)].T
+                                                      : poseAt(in.lines, i + double(k) / P).T);
+      }
+      caster.castLines(chunk_lines, chunk_poses, hits[std::size_t(k)]);
     }
-    caster.castLines(chunk_lines, chunk_poses, hits);
-    for (int k = 0; k < count; ++k) {
-      const int i = first + k;
-      const LinePose& line = in.lines[std::size_t(i)];
+    for (int j = 0; j < count; ++j) {
+      const int i = first + j;
       // The real strip: the band combination of each sample, averaged over
       // the column; a column with an unusable spectrum stays NaN.
-      cube.readLinePixelMajor(int(line.line), pixel_major.data());
+      cube.readLinePixelMajor(int(in.lines[std::size_t(i)].line), pixel_major.data());
       markInvalidSamples(pixel_major.data(), bands, samples, ignore, non_finite.data(),
                          ignored.data());
       float* real_row = real.ptr<float>(i);
@@ -194,39 +222,44 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
         }
         if (usable) real_row[c] = float(sum / step);
       }
-      // The prediction: each hit seen by the frame nearest in time.
-      const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, line.t)];
-      const cv::Mat& grey = grey_frames.frame(frame_index);
-      if (grey.empty()) continue;
-      const SE3d T_C_W = T_W_C.inverse();
-      const double x_max = grey.cols - 1 - o.frame_margin_px, y_max = grey.rows - 1 - o.frame_margin_px;
-      const ScanLineHits& line_hits = hits[std::size_t(k)];
-      float* predicted_row = predicted.ptr<float>(i);
-      for (int c = 0; c < cols; ++c) {
-        Eigen::Vector3d sum_W = Eigen::Vector3d::Zero();
-        double sum_grey = 0.0;
-        bool all_hit = true, all_seen = true;
-        for (int s = c * step; s < (c + 1) * step && all_hit; ++s) {
-          all_hit = line_hits.hit(s);
-          if (!all_hit) break;
-          const Eigen::Vector3d& p_W = line_hits.p_W[std::size_t(s)];
-          sum_W += p_W;
-          const Eigen::Vector3d p_C = T_C_W * p_W;
-          if (!all_seen || p_C.z() <= 0.0) {
-            all_seen = false;
-            continue;
+      for (int k = 0; k < P; ++k) {
+        if (k > 0 && i + 1 >= rows) break;  // no line after the last to interpolate to
+        // The prediction: each hit seen by the frame nearest in time.
+        const double t = k == 0 ? in.lines[std::size_t(i)].t : poseAt(in.lines, i + double(k) / P).t;
+        const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, t)];
+        const cv::Mat& grey = grey_frames.frame(frame_index);
+        if (grey.empty()) continue;
+        const SE3d T_C_W = T_W_C.inverse();
+        const double x_max = grey.cols - 1 - o.frame_margin_px;
+        const double y_max = grey.rows - 1 - o.frame_margin_px;
+        const ScanLineHits& line_hits = hits[std::size_t(k)][std::size_t(j)];
+        float* predicted_row = predicted[std::size_t(k)].ptr<float>(i);
+        for (int c = 0; c < cols; ++c) {
+          Eigen::Vector3d sum_W = Eigen::Vector3d::Zero();
+          double sum_grey = 0.0;
+          bool all_hit = true, all_seen = true;
+          for (int s = c * step; s < (c + 1) * step && all_hit; ++s) {
+            all_hit = line_hits.hit(s);
+            if (!all_hit) break;
+            const Eigen::Vector3d& p_W = line_hits.p_W[std::size_t(s)];
+            sum_W += p_W;
+            const Eigen::Vector3d p_C = T_C_W * p_W;
+            if (!all_seen || p_C.z() <= 0.0) {
+              all_seen = false;
+              continue;
+            }
+            const Eigen::Vector2d uv = in.rgb_camera->project(p_C);
+            if (!(uv.x() >= o.frame_margin_px && uv.y() >= o.frame_margin_px && uv.x() <= x_max &&
+                  uv.y() <= y_max)) {
+              all_seen = false;
+              continue;
+            }
+            sum_grey += bilinear(grey, uv.x(), uv.y());
           }
-          const Eigen::Vector2d uv = in.rgb_camera->project(p_C);
-          if (!(uv.x() >= o.frame_margin_px && uv.y() >= o.frame_margin_px && uv.x() <= x_max &&
-                uv.y() <= y_max)) {
-            all_seen = false;
-            continue;
-          }
-          sum_grey += bilinear(grey, uv.x(), uv.y());
+          if (!all_hit) continue;
+          if (k == 0) hitAt(i, c) = (sum_W / step).cast<float>();
+          if (all_seen) predicted_row[c] = float(sum_grey / step);
         }
-        if (!all_hit) continue;
-        hitAt(i, c) = (sum_W / step).cast<float>();
-        if (all_seen) predicted_row[c] = float(sum_grey / step);
       }
     }
   }
@@ -252,66 +285,71 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
   const cv::Point2d metre_to_px(1.0 / out.counts.across_pixel_m, 1.0 / out.counts.along_pixel_m);
   const cv::Point2d blur = o.blur_sigma_m * metre_to_px, highpass = o.highpass_sigma_m * metre_to_px;
   const PreparedImage real_image = prepareForMatching(real, blur, highpass);
-  real.release();
-  const PreparedImage predicted_image = prepareForMatching(predicted, blur, highpass);
-  predicted.release();
-  const cv::Point2d exclusion = o.exclusion_radius_m * metre_to_px;
+  std::vector<PreparedImage> predicted_images;
+  for (cv::Mat& image : predicted) {
+    predicted_images.push_back(prepareForMatching(image, blur, highpass));
+    image.release();
+  }
+  hit_W = {};
+  // The phases interleave into one score map whose rows are 1/P line apart.
+  const cv::Point2d exclusion(o.exclusion_radius_m * metre_to_px.x,
+                              o.exclusion_radius_m * metre_to_px.y * P);
 
   // 3. Each patch of the real strip searched in the prediction.
   const double min_std = o.min_template_std * real_image.stddev;
   const int H = o.patch_lines, W = o.patch_columns, SL = o.search_lines, SC = o.search_columns;
-  cv::Mat scores;
-  auto lineIndexAt = [&](double row) {
-    const int a = std::clamp(int(std::floor(row)), 0, rows - 2);
-    const double alpha = row - a;
-    return double(in.lines[std::size_t(a)].line) +
-           alpha * double(in.lines[std::size_t(a + 1)].line - in.lines[std::size_t(a)].line);
-  };
+  cv::Mat phase_scores;
+  cv::Mat scores(2 * SL * P + 1, 2 * SC + 1, CV_32F);
+  const ScanLineCastOptions cast_options;
   for (int r0 = SL; r0 + H + SL <= rows; r0 += H) {
     for (int c0 = SC; c0 + W + SC <= cols; c0 += W) {
       const cv::Rect patch(c0, r0, W, H);
       const cv::Rect search(c0 - SC, r0 - SL, W + 2 * SC, H + 2 * SL);
-      if (!allValid(real_image.valid, patch) || !allValid(predicted_image.valid, search)) continue;
+      bool valid = allValid(real_image.valid, patch);
+      for (int k = 0; k < P && valid; ++k) valid = allValid(predicted_images[std::size_t(k)].valid, search);
+      if (!valid) continue;
       ++out.counts.patches;
       const cv::Mat templ = real_image.blurred(patch);
       cv::Scalar mean, stddev;
       cv::meanStdDev(templ, mean, stddev);
       if (stddev[0] < min_std || stddev[0] <= 0.0) continue;
       ++out.counts.textured;
-      cv::matchTemplate(predicted_image.blurred(search), templ, scores, cv::TM_CCOEFF_NORMED);
+      // Score row m = j * P + k: the template's first row on the
+      // prediction's row (r0 - SL + j) at phase k, a shift of m / P - SL lines.
+      for (int k = 0; k < P; ++k) {
+        cv::matchTemplate(predicted_images[std::size_t(k)].blurred(search), templ, phase_scores,
+                          cv::TM_CCOEFF_NORMED);
+        for (int j = 0; j < phase_scores.rows; ++j) {
+          const int m = j * P + k;
+          if (m < scores.rows) phase_scores.row(j).copyTo(scores.row(m));
+        }
+      }
       const std::optional<NccPeak> peak =
           unambiguousPeak(scores, o.min_ncc, o.min_peak_margin, exclusion);
       if (!peak) continue;
       ++out.counts.matched;
-      // The real patch's centre pixel and where the prediction put it.
+      // The real patch's centre pixel and where the prediction put it: the
+      // point that pixel saw is where the ray of that predicted position
+      // meets the surface.
       const double real_row = r0 + (H - 1) / 2.0, real_col = c0 + (W - 1) / 2.0;
-      const double row = real_row + peak->y - SL, col = real_col + peak->x - SC;
-      const int r = int(std::floor(row)), c = int(std::floor(col));
-      if (r < 0 || c < 0 || r + 1 >= rows || c + 1 >= cols) continue;
-      const double ar = row - r, ac = col - c;
-      const Eigen::Vector3f corners[4] = {hitAt(r, c), hitAt(r, c + 1), hitAt(r + 1, c),
-                                          hitAt(r + 1, c + 1)};
-      double range_min = std::numeric_limits<double>::infinity(), range_max = -range_min;
-      bool finite = true;
-      for (int k = 0; k < 4; ++k) {
-        finite = finite && corners[k].allFinite();
-        const SE3d& T_W_U = in.lines[std::size_t(r + k / 2)].T;
-        const double range = (corners[k].cast<double>() - T_W_U.t).norm();
-        range_min = std::min(range_min, range);
-        range_max = std::max(range_max, range);
-      }
-      if (!finite || !(range_max - range_min <= o.max_range_step_m)) continue;
-      const Eigen::Vector3d p_W =
-          ((1.0 - ar) * ((1.0 - ac) * corners[0] + ac * corners[1]) +
-           ar * ((1.0 - ac) * corners[2] + ac * corners[3]))
-              .cast<double>();
+      const double row = real_row + peak->y / P - SL, col = real_col + peak->x - SC;
+      if (row < 0.0 || row > rows - 1) continue;
+      const SE3d T_W_U = poseAt(in.lines, row).T;
+      const std::optional<Eigen::Vector3d> ray_U = in.uhi_camera->unproject(col * step + (step - 1) / 2.0);
+      if (!ray_U) continue;
+      Ray ray;
+      ray.origin = T_W_U.t;
+      ray.direction = (T_W_U.q * *ray_U).normalized();
+      ray.t_near = cast_options.min_range_m;
+      ray.t_far = cast_options.max_range_m;
+      const RayHit hit = in.mesh->intersect(ray);
+      if (hit.triangle < 0) continue;
       ExtrinsicTiePoint tie;
-      tie.line_position = lineIndexAt(real_row);
+      tie.line_position = poseAt(in.lines, real_row).line_position;
       tie.line = std::llround(tie.line_position);
       tie.sample = real_col * step + (step - 1) / 2.0;
-      const SE3d& T_W_U = in.lines[std::size_t(std::lround(real_row))].T;
-      tie.range_m = (p_W - T_W_U.t).norm();
-      tie.p_W = p_W;
+      tie.p_W = ray.origin + hit.distance * ray.direction;
+      tie.range_m = (tie.p_W - poseAt(in.lines, real_row).T.t).norm();
       tie.hyper_col_row = Eigen::Vector2d(real_col, real_row);
       tie.rgb_col_row = Eigen::Vector2d(col, row);
       tie.ncc = peak->ncc;

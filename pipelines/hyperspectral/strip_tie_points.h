@@ -62,9 +62,13 @@ struct StripTiePointOptions {
   double exclusion_radius_m = 0.01;  // second peaks farther than this (on the ground) count
   double min_template_std = 0.25;    // of the real strip's standard deviation
   double frame_margin_px = 2.0;      // RGB samples this far inside the image
-  // The four hits around a match must lie within this of each other's
-  // range (an occlusion edge between them makes the interpolated point wrong).
-  double max_range_step_m = 0.02;
+  // The prediction is also rendered between the lines, at line_phases
+  // evenly spaced phases of the line spacing (the poses interpolated), and
+  // searched at all of them: the shift along the track is then found on a
+  // grid 1 / line_phases of a line fine before its sub-pixel refinement.
+  // Along the track the strips are sampled every 14 mm or so; on the
+  // lines alone the sub-pixel peak is pulled towards whole lines.
+  int line_phases = 4;
 
   // std::invalid_argument naming the field and what is allowed.
   void validate() const;
