@@ -112,6 +112,62 @@ RowPose poseAt(const std::vector<LinePose>& lines, double row) {
   return out;
 }
 
+// One row of the real strip: the band combination of each sample (pixel
+// major spectra), averaged over its column; NaN where a sample's spectrum
+// is unusable (spectrum_validity.h).
+void realStripRow(const float* pixel_major, const std::uint8_t* non_finite, const std::uint8_t* ignored,
+                  int bands, int step, const std::vector<int>& used_bands,
+                  const std::vector<double>& weights, double offset, int cols, float* row) {
+  for (int c = 0; c < cols; ++c) {
+    double sum = 0.0;
+    bool usable = true;
+    for (int s = c * step; s < (c + 1) * step && usable; ++s) {
+      usable = non_finite[s] == 0 && ignored[s] == 0;
+      double value = offset;
+      const float* spectrum = pixel_major + std::size_t(s) * std::size_t(bands);
+      for (const int b : used_bands) value += weights[std::size_t(b)] * spectrum[b];
+      sum += value;
+    }
+    if (usable) row[c] = float(sum / step);
+  }
+}
+
+// One row of the prediction: each column's hits seen by the grey frame
+// posed at T_W_C, averaged; NaN where a sample misses the surface or falls
+// outside the frame (margin_px inside). `hit_row` (optional) gets each
+// column's mean hit.
+void predictedStripRow(const ScanLineHits& hits, const SE3d& T_W_C, const cv::Mat& grey,
+                       const PinholeRadtanCamera& camera, double margin_px, int step, int cols,
+                       float* row, Eigen::Vector3f* hit_row) {
+  const SE3d T_C_W = T_W_C.inverse();
+  const double x_max = grey.cols - 1 - margin_px, y_max = grey.rows - 1 - margin_px;
+  for (int c = 0; c < cols; ++c) {
+    Eigen::Vector3d sum_W = Eigen::Vector3d::Zero();
+    double sum_grey = 0.0;
+    bool all_hit = true, all_seen = true;
+    for (int s = c * step; s < (c + 1) * step && all_hit; ++s) {
+      all_hit = hits.hit(s);
+      if (!all_hit) break;
+      const Eigen::Vector3d& p_W = hits.p_W[std::size_t(s)];
+      sum_W += p_W;
+      const Eigen::Vector3d p_C = T_C_W * p_W;
+      if (!all_seen || p_C.z() <= 0.0) {
+        all_seen = false;
+        continue;
+      }
+      const Eigen::Vector2d uv = camera.project(p_C);
+      if (!(uv.x() >= margin_px && uv.y() >= margin_px && uv.x() <= x_max && uv.y() <= y_max)) {
+        all_seen = false;
+        continue;
+      }
+      sum_grey += bilinear(grey, uv.x(), uv.y());
+    }
+    if (!all_hit) continue;
+    if (hit_row != nullptr) hit_row[c] = (sum_W / step).cast<float>();
+    if (all_seen) row[c] = float(sum_grey / step);
+  }
+}
+
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("StripTiePointOptions: " + what);
 }
@@ -204,24 +260,11 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
     }
     for (int j = 0; j < count; ++j) {
       const int i = first + j;
-      // The real strip: the band combination of each sample, averaged over
-      // the column; a column with an unusable spectrum stays NaN.
       cube.readLinePixelMajor(int(in.lines[std::size_t(i)].line), pixel_major.data());
       markInvalidSamples(pixel_major.data(), bands, samples, ignore, non_finite.data(),
                          ignored.data());
-      float* real_row = real.ptr<float>(i);
-      for (int c = 0; c < cols; ++c) {
-        double sum = 0.0;
-        bool usable = true;
-        for (int s = c * step; s < (c + 1) * step && usable; ++s) {
-          usable = non_finite[std::size_t(s)] == 0 && ignored[std::size_t(s)] == 0;
-          double value = in.band_offset;
-          const float* spectrum = pixel_major.data() + std::size_t(s) * std::size_t(bands);
-          for (const int b : used_bands) value += in.band_weights[std::size_t(b)] * spectrum[b];
-          sum += value;
-        }
-        if (usable) real_row[c] = float(sum / step);
-      }
+      realStripRow(pixel_major.data(), non_finite.data(), ignored.data(), bands, step, used_bands,
+                   in.band_weights, in.band_offset, cols, real.ptr<float>(i));
       for (int k = 0; k < P; ++k) {
         if (k > 0 && i + 1 >= rows) break;  // no line after the last to interpolate to
         // The prediction: each hit seen by the frame nearest in time.
@@ -229,37 +272,9 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
         const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, t)];
         const cv::Mat& grey = grey_frames.frame(frame_index);
         if (grey.empty()) continue;
-        const SE3d T_C_W = T_W_C.inverse();
-        const double x_max = grey.cols - 1 - o.frame_margin_px;
-        const double y_max = grey.rows - 1 - o.frame_margin_px;
-        const ScanLineHits& line_hits = hits[std::size_t(k)][std::size_t(j)];
-        float* predicted_row = predicted[std::size_t(k)].ptr<float>(i);
-        for (int c = 0; c < cols; ++c) {
-          Eigen::Vector3d sum_W = Eigen::Vector3d::Zero();
-          double sum_grey = 0.0;
-          bool all_hit = true, all_seen = true;
-          for (int s = c * step; s < (c + 1) * step && all_hit; ++s) {
-            all_hit = line_hits.hit(s);
-            if (!all_hit) break;
-            const Eigen::Vector3d& p_W = line_hits.p_W[std::size_t(s)];
-            sum_W += p_W;
-            const Eigen::Vector3d p_C = T_C_W * p_W;
-            if (!all_seen || p_C.z() <= 0.0) {
-              all_seen = false;
-              continue;
-            }
-            const Eigen::Vector2d uv = in.rgb_camera->project(p_C);
-            if (!(uv.x() >= o.frame_margin_px && uv.y() >= o.frame_margin_px && uv.x() <= x_max &&
-                  uv.y() <= y_max)) {
-              all_seen = false;
-              continue;
-            }
-            sum_grey += bilinear(grey, uv.x(), uv.y());
-          }
-          if (!all_hit) continue;
-          if (k == 0) hitAt(i, c) = (sum_W / step).cast<float>();
-          if (all_seen) predicted_row[c] = float(sum_grey / step);
-        }
+        predictedStripRow(hits[std::size_t(k)][std::size_t(j)], T_W_C, grey, *in.rgb_camera,
+                          o.frame_margin_px, step, cols, predicted[std::size_t(k)].ptr<float>(i),
+                          k == 0 ? &hitAt(i, 0) : nullptr);
       }
     }
   }
