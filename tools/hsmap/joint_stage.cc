@@ -226,7 +226,11 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
   JointOptions strip_joint_options;
   strip_joint_options.sigma_match_m = 0.002;
   strip_joint_options.sigma_match_along_m = 0.005;
-  const StripTiePointOptions strip_options;
+  // A strip column as wide as an RGB pixel (the prediction's resolution):
+  // UHI samples per column = the two focal lengths' ratio (2 on the presets).
+  StripTiePointOptions strip_options;
+  strip_options.sample_step =
+      std::max(1, int(std::lround(uhi.camera.f / survey.config.rgb.camera.fx)));
   const PushbroomCamera uhi_camera(uhi.camera);
   const PinholeRadtanCamera rgb_camera(survey.config.rgb.camera);
   BandCombination combination;
