@@ -179,6 +179,12 @@ TEST(JointProblem, RecoversExtrinsicAndTimeOffsetWithinTheirStatedSigma) {
     EXPECT_LT(result.sigma_translation_m->maxCoeff(), 0.005);
     EXPECT_LT(*result.time_offset_sigma_s, 0.002);
     EXPECT_TRUE(result.weakly_determined.empty()) << result.summary();
+    // The tie points' residuals on the ground are the noise they were given:
+    // 0.3 px across the line (0.6 mm at the 2.6-3.4 m ranges); along it they
+    // carry none, and only the solved trajectory's small errors show.
+    EXPECT_GT(result.rms_tie_across_m, 0.0004) << result.summary();
+    EXPECT_LT(result.rms_tie_across_m, 0.0009) << result.summary();
+    EXPECT_LT(result.rms_tie_along_m, 0.5 * result.rms_tie_across_m) << result.summary();
 
     // The trajectory's shape came back too: its placement and scale are the
     // INS's (9 fixes of 5 cm, 0.1-0.5 deg), so compare after the best
