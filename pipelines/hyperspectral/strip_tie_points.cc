@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "core/geometry/pose_interpolation.h"
 #include "core/io/envi_ignore_value.h"
 #include "core/raycast/ray.h"
 #include "core/util/input_error.h"
@@ -93,7 +94,7 @@ std::size_t nearestFrame(const std::vector<std::pair<int, SE3d>>& poses,
 }
 
 // The posed lines at a continuous row (between rows i and i + 1: the pose
-// interpolated, slerp and lerp, as a line exposed between the two).
+// interpolated, interpolatePose, as a line exposed between the two).
 struct RowPose {
   SE3d T;
   double t = 0.0;
@@ -106,7 +107,7 @@ RowPose poseAt(const std::vector<LinePose>& lines, double row) {
   const LinePose& a = lines[std::size_t(i)];
   const LinePose& b = lines[std::size_t(std::min(i + 1, last))];
   RowPose out;
-  out.T = SE3d(a.T.q.slerp(alpha, b.T.q), (1.0 - alpha) * a.T.t + alpha * b.T.t);
+  out.T = interpolatePose(a.T, b.T, alpha);
   out.t = (1.0 - alpha) * a.t + alpha * b.t;
   out.line_position = (1.0 - alpha) * double(a.line) + alpha * double(b.line);
   return out;
@@ -244,17 +245,22 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
   std::vector<std::vector<ScanLineHits>> hits(static_cast<std::size_t>(P));
   std::vector<std::int64_t> chunk_lines;
   std::vector<SE3d> chunk_poses;
+  // Each phase's exposure time per row of the chunk (for its nearest frame).
+  std::vector<std::vector<double>> chunk_times(static_cast<std::size_t>(P));
   constexpr int kChunk = 128;
   for (int first = 0; first < rows; first += kChunk) {
     const int count = std::min(kChunk, rows - first);
     for (int k = 0; k < P; ++k) {
       chunk_lines.clear();
       chunk_poses.clear();
+      chunk_times[std::size_t(k)].clear();
       for (int j = 0; j < count; ++j) {
         const int i = first + j;
+        const RowPose pose =
+            poseAt(in.lines, k == 0 || i + 1 >= rows ? double(i) : i + double(k) / P);
         chunk_lines.push_back(in.lines[std::size_t(i)].line);
-        chunk_poses.push_back(k == 0 || i + 1 >= rows ? in.lines[std::size_t(i)].T
-                                                      : poseAt(in.lines, i + double(k) / P).T);
+        chunk_poses.push_back(pose.T);
+        chunk_times[std::size_t(k)].push_back(pose.t);
       }
       caster.castLines(chunk_lines, chunk_poses, hits[std::size_t(k)]);
     }
@@ -268,7 +274,7 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       for (int k = 0; k < P; ++k) {
         if (k > 0 && i + 1 >= rows) break;  // no line after the last to interpolate to
         // The prediction: each hit seen by the frame nearest in time.
-        const double t = k == 0 ? in.lines[std::size_t(i)].t : poseAt(in.lines, i + double(k) / P).t;
+        const double t = chunk_times[std::size_t(k)][std::size_t(j)];
         const auto& [frame_index, T_W_C] = in.frame_poses[nearestFrame(in.frame_poses, *in.frames, t)];
         const cv::Mat& grey = grey_frames.frame(frame_index);
         if (grey.empty()) continue;
@@ -360,11 +366,12 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       const RayHit hit = in.mesh->intersect(ray);
       if (hit.triangle < 0) continue;
       ExtrinsicTiePoint tie;
-      tie.line_position = poseAt(in.lines, real_row).line_position;
+      const RowPose real_pose = poseAt(in.lines, real_row);
+      tie.line_position = real_pose.line_position;
       tie.line = std::llround(tie.line_position);
       tie.sample = real_col * step + (step - 1) / 2.0;
       tie.p_W = ray.origin + hit.distance * ray.direction;
-      tie.range_m = (tie.p_W - poseAt(in.lines, real_row).T.t).norm();
+      tie.range_m = (tie.p_W - real_pose.T.t).norm();
       tie.hyper_col_row = Eigen::Vector2d(real_col, real_row);
       tie.rgb_col_row = Eigen::Vector2d(col, row);
       tie.ncc = peak->ncc;
