@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "core/io/envi_header.h"
+#include "core/util/median.h"
 #include "core/util/message_text.h"
 
 namespace hsmap {
@@ -40,15 +41,7 @@ StreamTiming analyzeTimeStamps(const std::vector<double>& times, std::size_t max
   if (times.size() < 2) return timing;
   std::vector<double> steps(times.size() - 1);
   for (std::size_t i = 1; i < times.size(); ++i) steps[i - 1] = times[i] - times[i - 1];
-  std::vector<double> sorted = steps;
-  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
-  std::nth_element(sorted.begin(), middle, sorted.end());
-  timing.median_step_s = *middle;
-  if (sorted.size() % 2 == 0) {
-    // Even count: the mean of the two middle steps.
-    const double lower = *std::max_element(sorted.begin(), middle);
-    timing.median_step_s = 0.5 * (lower + *middle);
-  }
+  timing.median_step_s = median(steps);
   timing.rate_hz = timing.median_step_s > 0.0 ? 1.0 / timing.median_step_s : 0.0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     if (steps[i] > 1.5 * timing.median_step_s) {

@@ -9,6 +9,7 @@
 
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/util/input_error.h"
+#include "core/util/median.h"
 #include "pipelines/evaluate/triangle_mesh_distance.h"
 
 namespace hsmap {
@@ -19,15 +20,6 @@ constexpr const char* kNoMesh = "RUN/map/mesh.ply not found: the run has no surf
 
 // The median (the mean of the two middle values for an even count) of a
 // non-empty list, taken by value because nth_element reorders it.
-double median(std::vector<double> values) {
-  const std::size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + middle, values.end());
-  const double upper = values[middle];
-  if (values.size() % 2 == 1) return upper;
-  const double lower = *std::max_element(values.begin(), values.begin() + middle);
-  return 0.5 * (lower + upper);
-}
-
 MeshMetrics bothMissing(const std::string& why) {
   return {MetricValue::missing(why), MetricValue::missing(why), 0};
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/util/median.h"
 #include "pipelines/frontend/keyframe_policy.h"
 #include "pipelines/frontend/landmark_triangulator.h"
 #include "pipelines/frontend/tracking_loss_monitor.h"
@@ -32,12 +33,6 @@ class Stopwatch {
 };
 
 double& stepMs(FrameRecord& record, FrontendStep step) { return record.ms[std::size_t(step)]; }
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
 
 Eigen::Vector2d toEigen(const cv::Point2f& p) { return {double(p.x), double(p.y)}; }
 
@@ -274,10 +269,10 @@ bool FrameTracker::tryInitialise(const PrefetchedFrame& frame, FrameRecord& reco
     p2.push_back(toEigen(track.pixel));
     ids.push_back(track.id);
   }
-  if (median(angles) < options_.init_min_parallax_deg * kDegToRad) {
+  if (upperMedian(angles) < options_.init_min_parallax_deg * kDegToRad) {
     char text[128];
     std::snprintf(text, sizeof(text), "median ray angle %.2f deg, below the %.2f deg of parallax asked for",
-                  median(angles) / kDegToRad, options_.init_min_parallax_deg);
+                  upperMedian(angles) / kDegToRad, options_.init_min_parallax_deg);
     last_init_failure_ = text;
     return false;
   }
@@ -452,7 +447,7 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
     guesses.push_back(guess);
   }
   if (dx.size() >= 10) {
-    const cv::Point2f shift(float(median(dx)), float(median(dy)));
+    const cv::Point2f shift(float(upperMedian(dx)), float(upperMedian(dy)));
     for (std::size_t i = 0; i < tracks_.size(); ++i) {
       if (tracks_[i].landmark < 0) guesses[i] = tracks_[i].pixel + shift;
     }
@@ -537,7 +532,7 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
     const Eigen::Vector3d a = (p - c_K).normalized(), b = (p - c_C).normalized();
     parallax.push_back(std::atan2(a.cross(b).norm(), a.dot(b)));
   }
-  inputs.median_parallax_deg = median(parallax) / kDegToRad;
+  inputs.median_parallax_deg = upperMedian(parallax) / kDegToRad;
   inputs.landmarks_at_last_keyframe = int(last_keyframe_landmarks_.size());
   inputs.coverage = detector_.coverage(landmark_pixels);
   inputs.coverage_at_last_keyframe = coverage_at_last_keyframe_;

@@ -1,3 +1,4 @@
+#include "core/util/median.h"
 #include "pipelines/hyperspectral/coarse_ortho_shift.h"
 
 #include <algorithm>
@@ -7,15 +8,6 @@
 namespace hsmap {
 
 namespace {
-
-double median(std::vector<double>& values) {
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  if (values.size() % 2 == 1) return *middle;
-  const double upper = *middle;
-  const double lower = *std::max_element(values.begin(), middle);
-  return 0.5 * (lower + upper);
-}
 
 }  // namespace
 

@@ -16,14 +16,15 @@
 
 #include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
-#include "pipelines/hyperspectral/spectrum_validity.h"
 #include "core/io/ply_io.h"
 #include "core/util/input_error.h"
+#include "core/util/median.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/hyperspectral/ortho_accumulator.h"
 #include "pipelines/hyperspectral/ortho_quicklook.h"
 #include "pipelines/hyperspectral/product_headers.h"
+#include "pipelines/hyperspectral/spectrum_validity.h"
 #include "pipelines/hyperspectral/w_to_utm_lattice.h"
 
 namespace hsmap {
@@ -33,13 +34,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto mid = values.begin() + std::ptrdiff_t(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
 }
 
 // What the footprint pass keeps of a line.
@@ -189,8 +183,8 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
     }
     progress.finish();
     report.lines_with_hits = std::int64_t(footprints.size());
-    report.line_spacing_m = median(line_steps);
-    report.sample_spacing_m = median(sample_steps);
+    report.line_spacing_m = upperMedian(line_steps);
+    report.sample_spacing_m = upperMedian(sample_steps);
   }
   if (footprints.empty()) {
     throw std::runtime_error("hyperspectral ortho-image: none of the " +

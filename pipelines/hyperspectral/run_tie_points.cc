@@ -14,6 +14,7 @@
 
 #include "core/io/envi_reader.h"
 #include "core/io/ply_io.h"
+#include "core/util/median.h"
 #include "core/util/message_text.h"
 #include "pipelines/hyperspectral/ortho_grid_from_header.h"
 #include "pipelines/hyperspectral/rgb_ortho.h"
@@ -23,13 +24,6 @@ namespace hsmap {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 }  // namespace
 
@@ -93,7 +87,7 @@ RunTiePoints collectTiePointsInRun(const std::filesystem::path& run,
   for (const ExtrinsicTiePoint& tie : out.tie_points) {
     shifts.push_back((tie.hyper_col_row - tie.rgb_col_row).norm() * grid.pixel_m);
   }
-  out.median_shift_m = median(shifts);
+  out.median_shift_m = upperMedian(shifts);
   return out;
 }
 

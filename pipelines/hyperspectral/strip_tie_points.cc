@@ -18,6 +18,7 @@
 #include "core/io/envi_ignore_value.h"
 #include "core/raycast/ray.h"
 #include "core/util/input_error.h"
+#include "core/util/median.h"
 #include "core/util/message_text.h"
 #include "pipelines/hyperspectral/ortho_ncc.h"
 #include "pipelines/hyperspectral/scan_line_caster.h"
@@ -28,13 +29,6 @@ namespace hsmap {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-double medianOf(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // The RGB frames as grey CV_32F images, decoded once each: the lines come
 // in time order, so the nearest frame only moves forward and the last few
@@ -297,8 +291,8 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       if (std::isfinite(b)) along.push_back(b);
     }
   }
-  out.counts.across_pixel_m = medianOf(across);
-  out.counts.along_pixel_m = medianOf(along);
+  out.counts.across_pixel_m = upperMedian(across);
+  out.counts.along_pixel_m = upperMedian(along);
   if (!(out.counts.across_pixel_m > 0.0) || !(out.counts.along_pixel_m > 0.0)) {
     log << "strip tie points: the scan lines do not hit the surface\n";
     return out;

@@ -15,6 +15,7 @@
 
 #include "core/geometry/pinhole_radtan_camera.h"
 #include "core/survey/ins_fixes_in_world.h"
+#include "core/util/median.h"
 
 namespace hsmap {
 namespace {
@@ -34,14 +35,6 @@ constexpr int kRansacIterations = 200;
 // pitch changes: the known-rotation RANSAC runs at this many times the
 // threshold before the refinement.
 constexpr double kNoAttitudeThresholdFactor = 5.0;
-
-double median(std::vector<double> values) {
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  double m = values[mid];
-  if (values.size() % 2 == 0) m = 0.5 * (m + *std::max_element(values.begin(), values.begin() + mid));
-  return m;
-}
 
 // One frame's ORB features, with each keypoint's undistorted normalised coordinates.
 struct FrameFeatures {

@@ -1,3 +1,4 @@
+#include "core/util/median.h"
 #include "pipelines/surface/mesh_cleaning.h"
 
 #include <CGAL/Eigen_matrix.h>
@@ -310,9 +311,7 @@ SurfaceMesh cleanMesh(const SurfaceMesh& input, const MeshCleaningOptions& optio
     for (const Triangle& t : triangles)
       for (int k = 0; k < 3; ++k)
         lengths.push_back((input.vertices[t[k]] - input.vertices[t[(k + 1) % 3]]).norm());
-    auto middle = lengths.begin() + lengths.size() / 2;
-    std::nth_element(lengths.begin(), middle, lengths.end());
-    r.median_edge_m = *middle;
+    r.median_edge_m = upperMedian(std::move(lengths));
   }
 
   // 1. Spikes, first: the long-edge test would cut a spike's edges out.
