@@ -36,6 +36,43 @@ void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
 }
 
+// Each hit's distance (grid pixels, horizontal) to where the same sample of
+// the neighbouring scan lines (the previous and next cube lines, when posed)
+// sees it: the hit moved with the UHI from this line's pose to theirs. It
+// measures the lines' own spacing at that sample (wider on the outer side of
+// a turn), not the surface: a step of the seabed between two lines' hits
+// (an occluded shadow) does not widen it. 0 where a line has no posed
+// neighbour (a gap in the lines is not filled across), and 0 for the hits
+// less than `edge_m` (on the ground) from the line's first or last hit: the
+// filling's surround test lets a run of sources fill up to about
+// reach / sqrt(2) beyond a straight edge of the swath, so near the swath's
+// sides only the median spacing's radius applies (as before local reaches).
+void localLineSpacingPx(const std::vector<LinePose>& line_poses, std::size_t pose,
+                        const ScanLineHits& hits, double pixel_m, double edge_m,
+                        std::vector<float>& reach_px) {
+  std::fill(reach_px.begin(), reach_px.end(), 0.0f);
+  const int samples = int(reach_px.size());
+  int first = 0, last = samples - 1;
+  while (first < samples && !hits.hit(first)) ++first;
+  while (last >= first && !hits.hit(last)) --last;
+  if (first > last) return;
+  const Eigen::Vector2d first_NE = hits.p_W[std::size_t(first)].head<2>();
+  const Eigen::Vector2d last_NE = hits.p_W[std::size_t(last)].head<2>();
+  const LinePose& self = line_poses[pose];
+  const SE3d T_U_W = self.T.inverse();
+  for (const std::size_t other : {pose - 1, pose + 1}) {
+    if (other >= line_poses.size() || std::llabs(line_poses[other].line - self.line) != 1) continue;
+    const SE3d moved = line_poses[other].T * T_U_W;  // p_W at this line -> at the other line
+    for (std::size_t s = 0; s < reach_px.size(); ++s) {
+      if (!hits.hit(int(s))) continue;
+      const Eigen::Vector3d& p_W = hits.p_W[s];
+      if ((p_W.head<2>() - first_NE).norm() < edge_m || (p_W.head<2>() - last_NE).norm() < edge_m) continue;
+      const double d = ((moved * p_W) - p_W).head<2>().norm() / pixel_m;
+      reach_px[s] = std::max(reach_px[s], float(d));
+    }
+  }
+}
+
 // What the footprint pass keeps of a line.
 struct LineFootprint {
   std::size_t pose = 0;            // index into line_poses
@@ -221,14 +258,20 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
       options.fill_radius_px >= 0
           ? options.fill_radius_px
           : std::min(options.max_fill_radius_px, int(std::ceil(spacing / options.pixel_m - 1e-9)));
-  const int halo = report.fill_radius_px;
+  // Automatic filling also follows the lines' local spacing (each hit's
+  // reach, up to max_fill_radius_px): the halo covers the largest reach.
+  const bool local_reach = options.fill_radius_px < 0;
+  const int halo = local_reach ? std::max(report.fill_radius_px, options.max_fill_radius_px)
+                               : report.fill_radius_px;
   const std::int64_t row_bytes = OrthoTileAccumulator::bytesPerRow(grid.cols, bands);
   const std::int64_t budget_rows = std::int64_t(options.tile_memory_mb * 1024.0 * 1024.0) / row_bytes;
   report.tile_rows = int(std::clamp<std::int64_t>(budget_rows - 2 * halo, 1, grid.rows));
   report.tiles = (grid.rows + report.tile_rows - 1) / report.tile_rows;
   log << "hyperspectral ortho-image: " << grid.cols << " x " << grid.rows << " pixels of "
       << grid.pixel_m * 1000.0 << " mm in " << report.tiles << " tile(s) of " << report.tile_rows
-      << " rows; gap-fill radius " << report.fill_radius_px << " px\n";
+      << " rows; gap-fill radius " << report.fill_radius_px << " px"
+      << (local_reach ? " (up to " + std::to_string(halo) + " px where the lines fan out)" : std::string())
+      << "\n";
 
   // ---- 3. tiles ----------------------------------------------------------------
   std::filesystem::create_directories(out_folder);
@@ -264,6 +307,8 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
       std::vector<std::vector<Eigen::Vector2d>> col_row;
       // Per sample: 0 no hit, 1 valid, 2 non-finite, 3 ignore value.
       std::vector<std::vector<std::uint8_t>> status, non_finite, ignored;
+      std::vector<std::vector<float>> reach_px;  // per sample (OrthoHit::reach_px)
+      std::vector<std::size_t> pose_index;       // into line_poses
       std::vector<ScanLineHits> hits;
       std::vector<std::int64_t> lines;
       std::vector<SE3d> poses;
@@ -276,6 +321,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
       slot.status.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
       slot.non_finite.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
       slot.ignored.assign(batch, std::vector<std::uint8_t>(std::size_t(samples)));
+      slot.reach_px.assign(batch, std::vector<float>(std::size_t(samples), 0.0f));
     }
     std::vector<float> ancillary_out(std::size_t(4) * grid.cols);
     // Two accumulators, each reset for every other tile (their memory is
@@ -317,8 +363,10 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
         const std::size_t count = slot.count = std::min(batch, tile_lines.size() - first);
         slot.lines.clear();
         slot.poses.clear();
+        slot.pose_index.clear();
         for (std::size_t k = 0; k < count; ++k) {
-          const LinePose& pose = line_poses[footprints[tile_lines[first + k]].pose];
+          slot.pose_index.push_back(footprints[tile_lines[first + k]].pose);
+          const LinePose& pose = line_poses[slot.pose_index.back()];
           slot.lines.push_back(pose.line);
           slot.poses.push_back(pose.T);
         }
@@ -352,6 +400,10 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
             slot.col_row[k][std::size_t(s)] = grid.pixelOfUtm(lattice.toUtm(line.p_W[std::size_t(s)]));
             st = non_finite[s] != 0 ? 2 : ignored[s] != 0 ? 3 : 1;
           }
+          if (local_reach) {
+            localLineSpacingPx(line_poses, slot.pose_index[k], line, grid.pixel_m,
+                               halo * grid.pixel_m, slot.reach_px[k]);
+          }
         });
         prepare_s += secondsSince(start);
       };
@@ -376,6 +428,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
             hit.sample = float(s);
             hit.range_m = line.range_m[std::size_t(s)];
             hit.incidence_deg = line.incidence_deg[std::size_t(s)];
+            hit.reach_px = slot.reach_px[k][std::size_t(s)];
             if (tile.add(hit)) ++report.painted;
           }
         }

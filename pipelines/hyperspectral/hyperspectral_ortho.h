@@ -54,10 +54,15 @@
 // painted) when any band is NaN or infinite, or equals the cube header's
 // `data ignore value` (counted apart). Gap filling: an empty pixel is filled
 // by inverse-distance weighting of observed pixels within
-// r = ceil(max(line spacing, sample spacing) / pixel) pixels (capped by
-// max_fill_radius_px) that surround it (both sides along a row or a
-// column), so holes between lines close and nothing is invented beyond the
-// sampling's own spacing; NaN stays where nothing was seen.
+// r = ceil(max(line spacing, sample spacing) / pixel) pixels (the medians,
+// capped by max_fill_radius_px) that surround it (both sides along a row or
+// a column), so holes between lines close and nothing is invented beyond the
+// sampling's own spacing; NaN stays where nothing was seen. Where the lines
+// lie farther apart than the median (the outer side of a turn, a faster
+// stretch), a hit reaches as far as its line's local spacing at its sample
+// (the distance to where the neighbouring lines' same pixel sees, up to
+// max_fill_radius_px; not within max_fill_radius_px of the swath's sides),
+// so the fanned lines of a turn leave no stripes of NaN between them.
 //
 // The ENVI header carries no `data ignore value`: empty pixels are NaN, which
 // every float reader (GDAL, hsmap's evaluate) treats as empty, and the
@@ -99,8 +104,9 @@ struct HyperspectralOptions {
   // of the line spacing and the sample spacing over the pixel size), 0 = no
   // filling, > 0 as given.
   int fill_radius_px = -1;
-  // Upper bound of the automatic radius (a stalled vehicle, a single line
-  // seen far away must not smear spectra over centimetres).
+  // Upper bound of the automatic radius and of a hit's local reach (a
+  // stalled vehicle, a single line seen far away, a fast turn must not smear
+  // spectra over centimetres).
   int max_fill_radius_px = 8;
   // Memory of one tile's accumulator (MB); the tile's rows follow from it.
   // Two accumulators are held (one accumulating while the other is written).

@@ -25,13 +25,13 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 void OrthoTileAccumulator::FreeDeleter::operator()(float* p) const { std::free(p); }
 
 std::int64_t OrthoTileAccumulator::bytesPerRow(int cols, int bands) {
-  return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 4 + 16);
+  return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 1 + 4 + 16);
 }
 
 OrthoTileAccumulator::OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin,
                                            int row_end, int halo)
     : rows_(grid.rows), cols_(grid.cols), bands_(bands), halo_(halo) {
-  if (bands <= 0 || halo < 0 || grid.cols <= 0) {
+  if (bands <= 0 || halo < 0 || halo > kMaxReachPx || grid.cols <= 0) {
     throw std::invalid_argument("OrthoTileAccumulator: " + std::to_string(bands) + " bands, " +
                                 std::to_string(grid.cols) + " columns, halo " + std::to_string(halo));
   }
@@ -49,6 +49,7 @@ void OrthoTileAccumulator::reset(int row_begin, int row_end) {
   last_row_ = std::min(rows_, row_end + halo_);
   finished_ = false;
   observed_owned_ = filled_owned_ = 0;
+  max_reach_px_ = 0;
   const std::size_t pixels = std::size_t(last_row_ - first_row_) * std::size_t(cols_);
   // Only the counts and states are cleared (5 bytes a pixel): a pixel's sums,
   // best distance and ancillary values are set by its first hit (add) or by
@@ -68,6 +69,7 @@ void OrthoTileAccumulator::reset(int row_begin, int row_end) {
   counts_.assign(pixels, 0);
   state_.assign(pixels, kEmpty);
   best_d2_.resize(pixels);
+  reach_px_.resize(pixels);
   ancillary_.resize(pixels);
 }
 
@@ -85,16 +87,23 @@ bool OrthoTileAccumulator::add(const OrthoHit& hit) {
   float* sum = &sums_[i * std::size_t(bands_)];
   const float d2 = float((hit.col_row.x() - col_f) * (hit.col_row.x() - col_f) +
                          (hit.col_row.y() - row_f) * (hit.col_row.y() - row_f));
+  // The hit's reach in whole pixels, at most the halo (so that a tile fills
+  // as one accumulator over the grid would).
+  const std::uint8_t reach = std::uint8_t(
+      hit.reach_px > 0.0f ? std::min(float(halo_), std::ceil(hit.reach_px - 1e-4f)) : 0.0f);
+  max_reach_px_ = std::max(max_reach_px_, int(reach));
   if (counts_[i] == 0) {
     // 0 + x, not x: the same bits as adding to a cleared sum (-0 becomes +0).
     for (int b = 0; b < bands_; ++b) sum[b] = 0.0f + hit.spectrum[b];
     counts_[i] = 1;
     best_d2_[i] = d2;
+    reach_px_[i] = reach;
     ancillary_[i] = Eigen::Vector4f(hit.line, hit.sample, hit.range_m, hit.incidence_deg);
     return row >= row_begin_ && row < row_end_;
   }
   for (int b = 0; b < bands_; ++b) sum[b] += hit.spectrum[b];
   ++counts_[i];
+  reach_px_[i] = std::max(reach_px_[i], reach);
   if (d2 < best_d2_[i]) {
     best_d2_[i] = d2;
     ancillary_[i] = Eigen::Vector4f(hit.line, hit.sample, hit.range_m, hit.incidence_deg);
@@ -126,12 +135,16 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
   if (finished_) throw std::logic_error("OrthoTileAccumulator::finish called twice");
   finished_ = true;
   const int rows = last_row_ - first_row_;
-  // Means (every accumulated row: the halo feeds the filling).
+  // Means (every accumulated row: the halo feeds the filling), and each
+  // row's span of observed columns (to skip the empty grid beside the swath).
+  std::vector<int> observed_first(std::size_t(rows), cols_), observed_last(std::size_t(rows), -1);
   tbb::parallel_for(0, rows, [&](int r) {
     for (int c = 0; c < cols_; ++c) {
       const std::size_t i = std::size_t(r) * cols_ + c;
       if (counts_[i] == 0) continue;
       state_[i] = kObserved;
+      observed_first[std::size_t(r)] = std::min(observed_first[std::size_t(r)], c);
+      observed_last[std::size_t(r)] = c;
       const float scale = 1.0f / float(counts_[i]);
       float* sum = &sums_[i * std::size_t(bands_)];
       for (int b = 0; b < bands_; ++b) sum[b] *= scale;
@@ -144,7 +157,11 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
     float weight, d2;
   };
   std::vector<Offset> offsets;
-  const int radius = std::max(0, fill_radius_px);
+  // Every source reaches at least fill_radius_px, and as far as its own
+  // reach (the scan lines' local spacing, add()).
+  const int min_reach = std::max(0, fill_radius_px);
+  const float min_reach2 = float(min_reach * min_reach);
+  const int radius = std::max(min_reach, max_reach_px_);
   for (int dr = -radius; dr <= radius; ++dr) {
     for (int dc = -radius; dc <= radius; ++dc) {
       const int d2 = dr * dr + dc * dc;
@@ -161,13 +178,21 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
     std::vector<float> spectrum(static_cast<std::size_t>(bands_));
     std::vector<std::pair<std::size_t, float>> sources;
     std::int64_t filled = 0, observed = 0;
+    // Columns within `radius` of an observed pixel of the rows in reach.
+    int col_begin = cols_, col_end = -1;
+    for (int r = std::max(first_row_, row - radius); r < std::min(last_row_, row + radius + 1); ++r) {
+      col_begin = std::min(col_begin, observed_first[std::size_t(r - first_row_)] - radius);
+      col_end = std::max(col_end, observed_last[std::size_t(r - first_row_)] + radius);
+    }
+    col_begin = std::max(0, col_begin);
+    col_end = std::min(cols_ - 1, col_end);
     for (int col = 0; col < cols_; ++col) {
       const std::size_t i = index(row, col);
       if (state_[i] == kObserved) {
         ++observed;
         continue;
       }
-      if (offsets.empty()) continue;
+      if (offsets.empty() || col < col_begin || col > col_end) continue;
       bool left = false, right = false, up = false, down = false;
       float weight_sum = 0.0f, nearest_d2 = std::numeric_limits<float>::infinity();
       std::size_t nearest = 0;
@@ -177,6 +202,7 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
         if (r < first_row_ || r >= last_row_ || c < 0 || c >= cols_) continue;
         const std::size_t j = index(r, c);
         if (state_[j] != kObserved) continue;
+        if (o.d2 > min_reach2 && o.d2 > float(reach_px_[j]) * float(reach_px_[j])) continue;
         // Strict cones around the four axes (diagonals belong to none), so
         // that a straight or convex swath edge never has sources in two
         // opposite cones.

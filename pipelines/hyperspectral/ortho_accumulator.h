@@ -17,15 +17,23 @@
 // pixels inside the swath get no hit. An empty pixel is filled by inverse
 // distance weighting (weights 1 / d^2, d in pixels between centres) of the
 // OBSERVED pixels (those that got hits; filled pixels never feed others)
-// within `fill_radius_px`, and only when those pixels surround it: there are
+// within reach, and only when those pixels surround it: there are
 // observed pixels in two opposite ones of the four strict cones around the
 // axes (left and right: |dc| > |dr|; above and below: |dr| > |dc|; exact
-// diagonals count in none). A pixel outside a straight or convex edge of the
-// swath has all its sources in one half-plane, which never meets two
-// opposite cones, so holes between lines and samples are closed but the
-// swath is never grown outwards, and nothing is invented farther than the
-// radius (set from the line spacing by the caller). Its ancillary values are
-// interpolated with the same weights (a line between two lines is
+// diagonals count in none). Holes between lines and samples are closed,
+// and nothing is invented farther than the reach. Beside an edge of the
+// swath the sources lie in one half-plane: they meet two opposite cones
+// only as a run along the edge, k pixels out needing sources more than k
+// pixels along it on both sides, within reach r: k < r / sqrt(2) (1 pixel
+// for r = 3 beside an edge along a row or a column).
+// An observed pixel reaches `fill_radius_px` (set from the median line
+// spacing by the caller) or, when farther, its own reach: the largest
+// OrthoHit::reach_px of its hits (the local line spacing: where the
+// vehicle turns, the lines fan out on the outer side of the turn and their
+// gaps are wider than the median spacing), at most the halo. The caller
+// leaves the reach at 0 near the swath's sides (hyperspectral_ortho.cc), so
+// that the sides grow no more than the median radius lets them. A filled
+// pixel's ancillary values are interpolated with the same weights (a line between two lines is
 // fractional), unless its sources' lines lie more than
 // kMaxInterpolatedLineSpan apart (two passes over the spot): then those of
 // the nearest source. Pixels still empty stay NaN (spectrum and ancillary).
@@ -36,13 +44,13 @@
 // line that reaches [row_begin - halo, row_end + halo) gets, for the owned
 // rows, exactly what one accumulator over the whole grid would give.
 //
-// Memory: (bands + 6) * 4 bytes per pixel of (rows + 2 halo) x cols. The
+// Memory: bands * 4 + 26 bytes per pixel of (rows + 2 halo) x cols. The
 // sums (nearly all of it) are allocated once, uninitialised, in transparent
 // huge pages where the kernel allows (madvise): on the project's virtual
 // machine a 4 KB page fault costs ~30 us, so first touching 256 MB page by
 // page took 2-5 s, more than accumulating into it. reset() clears only the
-// counts and states; a pixel's sums, nearest distance and ancillary values
-// are written by its first hit (so stale values of an earlier tile are never
+// counts and states; a pixel's sums, nearest distance, reach and ancillary
+// values are written by its first hit (so stale values of an earlier tile are never
 // read: a reused accumulator gives the same bits as a new one).
 
 #include <Eigen/Core>
@@ -61,16 +69,23 @@ struct OrthoHit {
   Eigen::Vector2d col_row;
   const float* spectrum = nullptr;
   float line = 0, sample = 0, range_m = 0, incidence_deg = 0;
+  // How far (grid pixels) the scan lines' own sampling spreads around this
+  // hit: the distance to where the neighbouring lines' pixels of the same
+  // sample fall (0: only finish()'s fill_radius_px). See "Gap filling".
+  float reach_px = 0.0f;
 };
 
 class OrthoTileAccumulator {
  public:
+  // Largest halo (and so reach) in pixels: reaches are kept in one byte.
+  static constexpr int kMaxReachPx = 255;
+
   // A filled pixel's ancillary values are interpolated from sources whose
   // scan lines lie at most this far apart (one pass over the spot).
   static constexpr float kMaxInterpolatedLineSpan = 4.0f;
 
   // std::invalid_argument for an empty row range or one outside the grid,
-  // non-positive bands or a negative halo.
+  // non-positive bands or a halo outside [0, kMaxReachPx].
   OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin, int row_end, int halo);
 
   // Starts over on owned rows [row_begin, row_end) (same grid, bands and
@@ -126,6 +141,8 @@ class OrthoTileAccumulator {
   std::vector<std::uint32_t> counts_;
   std::vector<std::uint8_t> state_;
   std::vector<float> best_d2_;          // squared distance (px^2) of the nearest hit to the centre
+  std::vector<std::uint8_t> reach_px_;  // largest reach of the pixel's hits (whole pixels)
+  int max_reach_px_ = 0;                // over the tile's hits
   std::vector<Eigen::Vector4f> ancillary_;  // line, sample, range, incidence
   std::int64_t observed_owned_ = 0, filled_owned_ = 0;
 };

@@ -113,20 +113,25 @@ TEST(OrthoTileAccumulator, AFilledPixelsLineAndSampleLieBetweenItsSources) {
   }
 }
 
-TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
+// Random hits on a 20 x 30 grid, accumulated once over the grid and in
+// tiles of 7 rows with `halo`: the owned rows must be the same. With
+// `max_reach` > 0 each hit reaches a random 0..max_reach pixels.
+void expectTilesEqualOneAccumulator(int halo, int fill_radius, int max_reach) {
   const OrthoGrid grid = smallGrid(20, 30);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> col(-0.5, 19.5), row(-0.5, 29.5);
+  std::uniform_real_distribution<float> reach(0.0f, float(max_reach));
   std::vector<std::vector<float>> spectra;
-  std::vector<Eigen::Vector2d> where;
+  std::vector<OrthoHit> hits;
+  for (int i = 0; i < 250; ++i) spectra.push_back({float(i), float(2 * i)});
   for (int i = 0; i < 250; ++i) {
-    spectra.push_back({float(i), float(2 * i)});
-    where.emplace_back(col(rng), row(rng));
+    hits.push_back(hitAt(col(rng), row(rng), spectra[std::size_t(i)]));
+    if (max_reach > 0) hits.back().reach_px = reach(rng);
   }
   auto run = [&](int row_begin, int row_end, std::vector<float>& out) {
-    OrthoTileAccumulator tile(grid, 2, row_begin, row_end, 2);
-    for (std::size_t i = 0; i < where.size(); ++i) tile.add(hitAt(where[i].x(), where[i].y(), spectra[i]));
-    tile.finish(2);
+    OrthoTileAccumulator tile(grid, 2, row_begin, row_end, halo);
+    for (const OrthoHit& hit : hits) tile.add(hit);
+    tile.finish(fill_radius);
     std::vector<float> line(2 * 20);
     for (int r = row_begin; r < row_end; ++r) {
       tile.spectraRow(r, line.data());
@@ -147,6 +152,54 @@ TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
     } else {
       EXPECT_FLOAT_EQ(whole[i], tiled[i]) << i;
     }
+  }
+}
+
+TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorOverTheGrid) {
+  expectTilesEqualOneAccumulator(2, 2, 0);
+}
+
+TEST(OrthoTileAccumulator, TilesWithAHaloEqualOneAccumulatorAlsoWhenHitsReachFartherThanTheRadius) {
+  expectTilesEqualOneAccumulator(4, 1, 4);
+}
+
+TEST(OrthoTileAccumulator, AHitsOwnReachFillsTheWiderGapsOfFannedLinesAndNoFartherThanItReaches) {
+  // Two "scan lines" along rows 0 and 5 (a turn's outer side, where the
+  // lines lie 5 pixels apart) and two along rows 14 and 16 (2 apart, the
+  // median spacing: fill radius 2). Rows 1-4 are filled only when the hits
+  // of rows 0 and 5 reach 5 pixels. Rows 9-12 are out of every source's
+  // reach (row 5's hits are at least sqrt(4^2 + 5^2) > 5 pixels from them
+  // in the cones left and right; rows 14's are beyond 2), so stay empty;
+  // row 15 is the median gap, filled either way.
+  const OrthoGrid grid = smallGrid(10, 17);
+  const std::vector<float> a{1.0f}, b{3.0f};
+  for (const float reach : {0.0f, 5.0f}) {
+    OrthoTileAccumulator tile(grid, 1, 0, 17, 5);
+    for (int c = 0; c < 10; ++c) {
+      OrthoHit top = hitAt(c, 0, a), fanned = hitAt(c, 5, b);
+      top.reach_px = fanned.reach_px = reach;
+      tile.add(top);
+      tile.add(fanned);
+      tile.add(hitAt(c, 14, a));
+      tile.add(hitAt(c, 16, b));
+    }
+    tile.finish(2);
+    std::vector<float> row(10);
+    for (int r = 1; r <= 4; ++r) {
+      tile.spectraRow(r, row.data());
+      if (reach == 0.0f) {
+        EXPECT_TRUE(std::isnan(row[5])) << "row " << r;
+      } else {
+        EXPECT_GT(row[5], 1.0f) << "row " << r;  // between the two lines' values
+        EXPECT_LT(row[5], 3.0f) << "row " << r;
+      }
+    }
+    for (int r = 9; r <= 12; ++r) {
+      tile.spectraRow(r, row.data());
+      for (int c = 0; c < 10; ++c) EXPECT_TRUE(std::isnan(row[c])) << "row " << r << ", reach " << reach;
+    }
+    tile.spectraRow(15, row.data());
+    EXPECT_FLOAT_EQ(row[5], 2.0f);
   }
 }
 
