@@ -26,6 +26,7 @@ function(hsmap_test_program name dir)
   endif()
   add_executable(${name} ${sources})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} hsmap_test_support GTest::gtest GTest::gmock GTest::gtest_main)
-  target_compile_definitions(${name} PRIVATE HSMAP_TOOL_PATH="$<TARGET_FILE:hsmap>")
+  target_compile_definitions(${name} PRIVATE HSMAP_TOOL_PATH="$<TARGET_FILE:hsmap>"
+                                             HSMAP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
 endfunction()

@@ -36,20 +36,57 @@ void require(bool ok, const std::string& field, const std::string& expected) {
   if (!ok) throw std::invalid_argument("hyperspectral options: " + field + ": expected " + expected);
 }
 
-// Each hit's distance (grid pixels, horizontal) to where the same sample of
-// the neighbouring scan lines (the previous and next cube lines, when posed)
-// sees it: the hit moved with the UHI from this line's pose to theirs. It
-// measures the lines' own spacing at that sample (wider on the outer side of
-// a turn), not the surface: a step of the seabed between two lines' hits
-// (an occluded shadow) does not widen it. 0 where a line has no posed
-// neighbour (a gap in the lines is not filled across), and 0 for the hits
-// less than `edge_m` (on the ground) from the line's first or last hit: the
-// filling's surround test lets a run of sources fill up to about
+// The local spacing of the scan lines (ortho gap filling, OrthoHit::reach_px).
+// A point p_W seen by a line's pixel is seen by the same pixel of a
+// neighbouring line (the previous or next cube line, when posed) at
+// T_other * T_self^-1 * p_W: carried with the UHI. Its horizontal
+// displacement (A p_W + t, A = R - I) is the lines' own spacing at that
+// pixel (wider on the outer side of a turn), not the surface's: a step of
+// the seabed between two lines' hits (an occluded shadow) does not widen
+// it. A line with no posed neighbour has no motion (a gap in the lines is
+// not filled across).
+struct LineMotion {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d t;
+};
+std::vector<LineMotion> neighbourMotions(const std::vector<LinePose>& line_poses, std::size_t pose) {
+  std::vector<LineMotion> motions;
+  const LinePose& self = line_poses[pose];
+  const SE3d T_U_W = self.T.inverse();
+  for (const std::size_t other : {pose - 1, pose + 1}) {
+    if (other >= line_poses.size() || std::llabs(line_poses[other].line - self.line) != 1) continue;
+    const SE3d moved = line_poses[other].T * T_U_W;
+    motions.push_back({moved.q.toRotationMatrix() - Eigen::Matrix3d::Identity(), moved.t});
+  }
+  return motions;
+}
+double lineSpacingAt(const std::vector<LineMotion>& motions, const Eigen::Vector3d& p_W) {
+  double spacing = 0.0;
+  for (const LineMotion& m : motions) spacing = std::max(spacing, (m.A * p_W + m.t).head<2>().norm());
+  return spacing;
+}
+// The line's largest spacing (metres): at its first, middle and last hits
+// (the displacement is affine in the point, so along a line of hits it is
+// largest at an end or, over relief, near them); 0 without hits.
+double lineSpacingM(const std::vector<LinePose>& line_poses, std::size_t pose, const ScanLineHits& hits) {
+  const int samples = int(hits.p_W.size());
+  int first = 0, last = samples - 1, middle = samples / 2;
+  while (first < samples && !hits.hit(first)) ++first;
+  while (last >= first && !hits.hit(last)) --last;
+  if (first > last) return 0.0;
+  while (middle < last && !hits.hit(middle)) ++middle;
+  const std::vector<LineMotion> motions = neighbourMotions(line_poses, pose);
+  return std::max({lineSpacingAt(motions, hits.p_W[std::size_t(first)]),
+                   lineSpacingAt(motions, hits.p_W[std::size_t(middle)]),
+                   lineSpacingAt(motions, hits.p_W[std::size_t(last)])});
+}
+// Each hit's reach (grid pixels): its line's spacing at its pixel, 0 for
+// the hits less than `edge_m` (on the ground) from the line's first or last
+// hit: the filling's surround test lets a run of sources fill up to about
 // reach / sqrt(2) beyond a straight edge of the swath, so near the swath's
-// sides only the median spacing's radius applies (as before local reaches).
-void localLineSpacingPx(const std::vector<LinePose>& line_poses, std::size_t pose,
-                        const ScanLineHits& hits, double pixel_m, double edge_m,
-                        std::vector<float>& reach_px) {
+// sides only the median spacing's radius applies.
+void hitReachPx(const std::vector<LinePose>& line_poses, std::size_t pose, const ScanLineHits& hits,
+                double pixel_m, double edge_m, std::vector<float>& reach_px) {
   std::fill(reach_px.begin(), reach_px.end(), 0.0f);
   const int samples = int(reach_px.size());
   int first = 0, last = samples - 1;
@@ -58,24 +95,23 @@ void localLineSpacingPx(const std::vector<LinePose>& line_poses, std::size_t pos
   if (first > last) return;
   const Eigen::Vector2d first_NE = hits.p_W[std::size_t(first)].head<2>();
   const Eigen::Vector2d last_NE = hits.p_W[std::size_t(last)].head<2>();
-  const LinePose& self = line_poses[pose];
-  const SE3d T_U_W = self.T.inverse();
-  for (const std::size_t other : {pose - 1, pose + 1}) {
-    if (other >= line_poses.size() || std::llabs(line_poses[other].line - self.line) != 1) continue;
-    const SE3d moved = line_poses[other].T * T_U_W;  // p_W at this line -> at the other line
-    for (std::size_t s = 0; s < reach_px.size(); ++s) {
-      if (!hits.hit(int(s))) continue;
-      const Eigen::Vector3d& p_W = hits.p_W[s];
-      if ((p_W.head<2>() - first_NE).norm() < edge_m || (p_W.head<2>() - last_NE).norm() < edge_m) continue;
-      const double d = ((moved * p_W) - p_W).head<2>().norm() / pixel_m;
-      reach_px[s] = std::max(reach_px[s], float(d));
-    }
+  auto farFromEnds = [&](int s) {
+    const Eigen::Vector2d p = hits.p_W[std::size_t(s)].head<2>();
+    return (p - first_NE).norm() >= edge_m && (p - last_NE).norm() >= edge_m;
+  };
+  while (first <= last && !(hits.hit(first) && farFromEnds(first))) ++first;
+  while (last >= first && !(hits.hit(last) && farFromEnds(last))) --last;
+  const std::vector<LineMotion> motions = neighbourMotions(line_poses, pose);
+  for (int s = first; s <= last; ++s) {
+    if (!hits.hit(s)) continue;
+    reach_px[std::size_t(s)] = float(lineSpacingAt(motions, hits.p_W[std::size_t(s)]) / pixel_m);
   }
 }
 
 // What the footprint pass keeps of a line.
 struct LineFootprint {
   std::size_t pose = 0;            // index into line_poses
+  double spacing_m = 0.0;          // lineSpacingM: to its neighbouring lines, at most
   Eigen::AlignedBox3d box_W;       // of its hits
   int row_min = 0, row_max = -1;   // grid rows its hits can fall in
 };
@@ -206,6 +242,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
         if (line.hits == 0) continue;
         LineFootprint footprint;
         footprint.pose = first + k;
+        footprint.spacing_m = lineSpacingM(line_poses, first + k, line);
         for (int s = 0; s < samples; ++s) {
           if (!line.hit(s)) continue;
           footprint.box_W.extend(line.p_W[std::size_t(s)]);
@@ -261,8 +298,12 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
   // Automatic filling also follows the lines' local spacing (each hit's
   // reach, up to max_fill_radius_px): the halo covers the largest reach.
   const bool local_reach = options.fill_radius_px < 0;
-  const int halo = local_reach ? std::max(report.fill_radius_px, options.max_fill_radius_px)
-                               : report.fill_radius_px;
+  double widest_spacing_m = 0.0;
+  for (const LineFootprint& f : footprints) widest_spacing_m = std::max(widest_spacing_m, f.spacing_m);
+  const int halo =
+      local_reach ? std::clamp(int(std::ceil(widest_spacing_m / options.pixel_m - 1e-9)),
+                               report.fill_radius_px, std::max(report.fill_radius_px, options.max_fill_radius_px))
+                  : report.fill_radius_px;
   const std::int64_t row_bytes = OrthoTileAccumulator::bytesPerRow(grid.cols, bands);
   const std::int64_t budget_rows = std::int64_t(options.tile_memory_mb * 1024.0 * 1024.0) / row_bytes;
   report.tile_rows = int(std::clamp<std::int64_t>(budget_rows - 2 * halo, 1, grid.rows));
@@ -308,7 +349,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
       // Per sample: 0 no hit, 1 valid, 2 non-finite, 3 ignore value.
       std::vector<std::vector<std::uint8_t>> status, non_finite, ignored;
       std::vector<std::vector<float>> reach_px;  // per sample (OrthoHit::reach_px)
-      std::vector<std::size_t> pose_index;       // into line_poses
+      std::vector<std::size_t> footprint;        // into footprints
       std::vector<ScanLineHits> hits;
       std::vector<std::int64_t> lines;
       std::vector<SE3d> poses;
@@ -363,10 +404,10 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
         const std::size_t count = slot.count = std::min(batch, tile_lines.size() - first);
         slot.lines.clear();
         slot.poses.clear();
-        slot.pose_index.clear();
+        slot.footprint.clear();
         for (std::size_t k = 0; k < count; ++k) {
-          slot.pose_index.push_back(footprints[tile_lines[first + k]].pose);
-          const LinePose& pose = line_poses[slot.pose_index.back()];
+          slot.footprint.push_back(tile_lines[first + k]);
+          const LinePose& pose = line_poses[footprints[slot.footprint.back()].pose];
           slot.lines.push_back(pose.line);
           slot.poses.push_back(pose.T);
         }
@@ -400,9 +441,14 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
             slot.col_row[k][std::size_t(s)] = grid.pixelOfUtm(lattice.toUtm(line.p_W[std::size_t(s)]));
             st = non_finite[s] != 0 ? 2 : ignored[s] != 0 ? 3 : 1;
           }
-          if (local_reach) {
-            localLineSpacingPx(line_poses, slot.pose_index[k], line, grid.pixel_m,
-                               halo * grid.pixel_m, slot.reach_px[k]);
+          // Only a line whose spacing exceeds the median radius somewhere
+          // needs each hit's reach (on a straight survey, few do).
+          const LineFootprint& footprint = footprints[slot.footprint[k]];
+          if (local_reach && footprint.spacing_m > report.fill_radius_px * grid.pixel_m) {
+            hitReachPx(line_poses, footprint.pose, line, grid.pixel_m, halo * grid.pixel_m,
+                       slot.reach_px[k]);
+          } else {
+            std::fill(slot.reach_px[k].begin(), slot.reach_px[k].end(), 0.0f);
           }
         });
         prepare_s += secondsSince(start);

@@ -1,6 +1,9 @@
 #include "pipelines/simulate/simulation_config.h"
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -127,6 +130,30 @@ TEST_F(SimulationConfigYaml, ErrorsNameTheFileLineAndKey) {
             file + ":line 1, key format: expected hsmap-simulation/1, got 'hsmap-simulation/2'");
   EXPECT_EQ(errorOf("format: hsmap-simulation/1\npreset: tiny\nmotion: {altitude_m: 0.2}\n"),
             file + ": simulation setting motion.altitude_m: expected an altitude in [0.5, 10] m");
+}
+
+// The simulation files the docs' benchmarks are made from stay readable as
+// the settings evolve.
+TEST(SimulationConfigFiles, TheBenchmarksConfigurationsReadAndValidate) {
+  int read = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(HSMAP_SOURCE_DIR) / "benchmarks")) {
+    if (entry.path().extension() != ".yaml") continue;
+    std::ifstream in(entry.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("format: hsmap-simulation/1") == std::string::npos) continue;
+    SimulationConfig config;
+    ASSERT_NO_THROW(config = readSimulationConfig(entry.path())) << entry.path();
+    EXPECT_NO_THROW(validateSimulationConfig(config)) << entry.path();
+    ++read;
+    if (entry.path().filename() == "lawnmower_south.yaml") {
+      // What docs/BENCHMARKS.md says of it.
+      EXPECT_EQ(config.motion.pattern, MotionPattern::lawnmower);
+      EXPECT_EQ(config.motion.lanes, 2);
+      EXPECT_LT(config.origin.lat_deg, 0.0);
+      EXPECT_DOUBLE_EQ(config.calibration.time_offset_s, -0.02);
+    }
+  }
+  EXPECT_GE(read, 2);
 }
 
 }  // namespace
