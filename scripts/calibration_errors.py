@@ -7,7 +7,9 @@ of the run's stated 1-sigma.
 Rotation: the rotation vector of R_true^-1 R_est (about U's x, y, z, degrees);
 translation: t_est - t_true (along C's x, y, z, millimetres); d: d_est -
 d_true (milliseconds). Prints one line per component and the largest
-|error| / sigma.
+|error| / sigma. A component whose sigma is null (the `sequential` variant's
+d, which it keeps at the survey's guess) is printed as not estimated and
+left out of the largest ratio.
 """
 import sys
 
@@ -48,14 +50,25 @@ def main():
     trans_err = (np.array(run["T_C_U"]["translation_m"]) - np.array(truth["T_C_U"]["translation_m"])) * 1000
     d_err = (run["time_offset_s"] - truth["time_offset_s"]) * 1000
     rows = []
-    for axis, e, s in zip("xyz", rot_err, run["T_C_U"]["sigma_rotation_deg"]):
+    def scaled(sigma, factor):
+        return None if sigma is None else sigma * factor
+
+    sigma_rotation = run["T_C_U"]["sigma_rotation_deg"] or [None] * 3
+    sigma_translation = run["T_C_U"]["sigma_translation_m"] or [None] * 3
+    for axis, e, s in zip("xyz", rot_err, sigma_rotation):
         rows.append((f"rotation about U's {axis}", e, s, "deg"))
-    for axis, e, s in zip("xyz", trans_err, run["T_C_U"]["sigma_translation_m"]):
-        rows.append((f"translation along C's {axis}", e, s * 1000, "mm"))
-    rows.append(("time offset d", d_err, run["time_offset_sigma_s"] * 1000, "ms"))
+    for axis, e, s in zip("xyz", trans_err, sigma_translation):
+        rows.append((f"translation along C's {axis}", e, scaled(s, 1000), "mm"))
+    rows.append(("time offset d", d_err, scaled(run["time_offset_sigma_s"], 1000), "ms"))
+    ratios = []
     for name, e, s, unit in rows:
+        if s is None:
+            print(f"{name:28s} error {e:9.4f} {unit:3s} (not estimated: no sigma)")
+            continue
         print(f"{name:28s} error {e:9.4f} {unit:3s} sigma {s:8.4f} {unit:3s} ({abs(e) / s:.2f} sigma)")
-    print(f"largest error / sigma: {max(abs(e) / s for _, e, s, _ in rows):.2f}")
+        ratios.append(abs(e) / s)
+    if ratios:
+        print(f"largest error / sigma: {max(ratios):.2f}")
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@
 #include "core/graph/factor_graph.h"
 #include "core/graph/key.h"
 #include "core/graph/values.h"
+#include "core/util/median.h"
 #include "core/util/message_text.h"
 #include "factors/extrinsic_prior_factor.h"
 #include "factors/pushbroom_extrinsic_factor.h"
@@ -63,6 +64,15 @@ std::string ExtrinsicRefinementResult::summary() const {
         << " mm; residual RMS u " << fixedDecimals(rms_u_before_px, 2) << " -> " << fixedDecimals(rms_u_after_px, 2)
         << " px, across " << fixedDecimals(rms_across_before_px, 2) << " -> "
         << fixedDecimals(rms_across_after_px, 2) << " px\n";
+    if (rotation_per_time_offset_deg_s && translation_per_time_offset_m_s) {
+      const Eigen::Vector3d& r = *rotation_per_time_offset_deg_s;
+      const Eigen::Vector3d& t = *translation_per_time_offset_m_s;
+      out << "  T_C_U per ms of the time offset d (kept at the survey's guess): rotation (deg, about U x y z) "
+          << fixedDecimals(r[0] / 1000.0, 4) << " " << fixedDecimals(r[1] / 1000.0, 4) << " "
+          << fixedDecimals(r[2] / 1000.0, 4) << ", translation (mm, along C x y z) " << fixedDecimals(t[0], 2)
+          << " " << fixedDecimals(t[1], 2) << " " << fixedDecimals(t[2], 2) << "; the 1-sigma below includes d's "
+          << fixedDecimals(1000.0 * time_offset_sigma_s, 1) << " ms\n";
+    }
     if (sigma_rotation_deg && sigma_translation_m) {
       out << "  1-sigma rotation (deg, about U x y z) " << fixedDecimals((*sigma_rotation_deg)[0], 4) << " "
           << fixedDecimals((*sigma_rotation_deg)[1], 4) << " " << fixedDecimals((*sigma_rotation_deg)[2], 4)
@@ -99,19 +109,19 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
   std::int64_t without_line = 0;
   // The UHI pose at the tie's continuous line position, interpolated between
   // the two lines around it (both must be posed).
-  auto poseAt = [&](const ExtrinsicTiePoint& tie) -> std::optional<SE3d> {
-    if (!std::isfinite(tie.line_position)) return std::nullopt;
-    const double below = std::floor(tie.line_position);
+  auto poseAt = [&](double line_position) -> std::optional<SE3d> {
+    if (!std::isfinite(line_position)) return std::nullopt;
+    const double below = std::floor(line_position);
     const auto a = pose_of_line.find((long long)below);
     if (a == pose_of_line.end()) return std::nullopt;
-    const double alpha = tie.line_position - below;
+    const double alpha = line_position - below;
     if (alpha == 0.0) return a->second->T;
     const auto b = pose_of_line.find((long long)below + 1);
     if (b == pose_of_line.end()) return std::nullopt;
     return interpolatePose(a->second->T, b->second->T, alpha);
   };
   for (const ExtrinsicTiePoint& tie : tie_points) {
-    const std::optional<SE3d> T_W_U = poseAt(tie);
+    const std::optional<SE3d> T_W_U = poseAt(tie.line_position);
     if (!T_W_U || !tie.p_W.allFinite() || !std::isfinite(tie.sample)) {
       ++without_line;
       continue;
@@ -132,7 +142,8 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
 
   const NoiseModel prior_noise =
       ExtrinsicPriorFactor::noiseFromSigmas(prior.sigma_rotation_deg, prior.sigma_translation_m);
-  auto buildGraph = [&](const std::vector<bool>& keep) {
+  // T_W_C of each tie (index as `ties`): the line poses' own, or shifted along the lines.
+  auto buildGraphWith = [&](const std::vector<bool>& keep, const std::vector<SE3d>& T_W_C) {
     FactorGraph graph;
     graph.emplace<ExtrinsicPriorFactor>(E(0), prior.T_C_U, prior_noise);
     for (std::size_t i = 0; i < ties.size(); ++i) {
@@ -141,12 +152,15 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
       const double range = tie.range_m > 0.0 ? tie.range_m : kDefaultRangeM;
       const double sigma_across = options.sigma_match_m / range;
       const Eigen::Vector2d sigmas(camera_parameters.f * sigma_across, sigma_across);
-      graph.emplace<PushbroomExtrinsicFactor>(E(0), ties[i].T_W_C, tie.p_W, tie.sample,
+      graph.emplace<PushbroomExtrinsicFactor>(E(0), T_W_C[i], tie.p_W, tie.sample,
                                               camera_parameters, NoiseModel::fromSigmas(sigmas),
                                               RobustLoss::cauchy(options.robust_scale));
     }
     return graph;
   };
+  std::vector<SE3d> line_T_W_C;
+  for (const Tie& tie : ties) line_T_W_C.push_back(tie.T_W_C);
+  auto buildGraph = [&](const std::vector<bool>& keep) { return buildGraphWith(keep, line_T_W_C); };
 
   Values values;
   values.insertPose(E(0), T_C_U_lines.q, T_C_U_lines.t);
@@ -197,6 +211,66 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
                         (180.0 / std::numbers::pi));
   } catch (const std::exception& error) {
     result.warnings.push_back(std::string("no covariance: ") + error.what());
+  }
+
+  // What d's uncertainty adds (see the header): the solve again with the
+  // tie points' line poses +-delta along the lines.
+  if (prior.time_offset_sigma_s > 0.0 && result.sigma_rotation_deg && result.sigma_translation_m) {
+    result.time_offset_sigma_s = prior.time_offset_sigma_s;
+    std::vector<double> periods;  // seconds per line
+    std::vector<const LinePose*> by_line;
+    for (const LinePose& pose : line_poses) by_line.push_back(&pose);
+    std::sort(by_line.begin(), by_line.end(), [](const LinePose* a, const LinePose* b) { return a->line < b->line; });
+    for (std::size_t i = 1; i < by_line.size(); ++i) {
+      const long long lines = by_line[i]->line - by_line[i - 1]->line;
+      if (lines > 0) periods.push_back((by_line[i]->t - by_line[i - 1]->t) / double(lines));
+    }
+    const double period = upperMedian(periods);
+    constexpr double kDelta = 0.005;  // s: T_C_U moves linearly with d over this
+    std::optional<SE3d> shifted_solution[2];
+    if (period > 0.0) {
+      std::vector<bool> keep_shifted = keep;
+      std::vector<SE3d> T_W_C[2] = {line_T_W_C, line_T_W_C};
+      for (std::size_t i = 0; i < ties.size(); ++i) {
+        if (!keep_shifted[i]) continue;
+        for (int side = 0; side < 2; ++side) {
+          const double shift_lines = (side == 0 ? -kDelta : kDelta) / period;
+          const std::optional<SE3d> T_W_U = poseAt(ties[i].tie->line_position + shift_lines);
+          if (!T_W_U) {
+            keep_shifted[i] = false;  // near the ends: out of both shifted solves
+            break;
+          }
+          T_W_C[side][i] = *T_W_U * T_U_C_lines;
+        }
+      }
+      for (int side = 0; side < 2; ++side) {
+        Values shifted_values;
+        shifted_values.insertPose(E(0), result.T_C_U.q, result.T_C_U.t);
+        const FactorGraph shifted_graph = buildGraphWith(keep_shifted, T_W_C[side]);
+        GraphProblem shifted_problem(shifted_graph, shifted_values);
+        if (solve(shifted_problem, solver).usable) {
+          shifted_solution[side] =
+              SE3d(shifted_values.poseRotation(E(0)).normalized(), shifted_values.poseTranslation(E(0)));
+        }
+      }
+    }
+    if (shifted_solution[0] && shifted_solution[1]) {
+      const SE3d& minus = *shifted_solution[0];
+      const SE3d& plus = *shifted_solution[1];
+      const Eigen::AngleAxisd turn(minus.q.conjugate() * plus.q);  // about U's axes
+      const Eigen::Vector3d rotation_deg_s = turn.angle() * turn.axis() * (180.0 / std::numbers::pi) / (2.0 * kDelta);
+      const Eigen::Vector3d translation_m_s = (plus.t - minus.t) / (2.0 * kDelta);
+      result.rotation_per_time_offset_deg_s = rotation_deg_s;
+      result.translation_per_time_offset_m_s = translation_m_s;
+      const double sd = prior.time_offset_sigma_s;
+      result.sigma_rotation_deg = (result.sigma_rotation_deg->array().square() +
+                                   (rotation_deg_s.array() * sd).square()).sqrt().matrix();
+      result.sigma_translation_m = (result.sigma_translation_m->array().square() +
+                                    (translation_m_s.array() * sd).square()).sqrt().matrix();
+    } else {
+      result.warnings.push_back(
+          "the 1-sigma leaves out the time offset's uncertainty (the shifted solves failed)");
+    }
   }
 
   // Residual RMS over the inliers, before and after.

@@ -23,6 +23,12 @@ struct ExtrinsicPrior {
   SE3d T_C_U;
   double sigma_rotation_deg = 2.0;
   double sigma_translation_m = 0.05;
+  // 1-sigma of the time offset d the lines were posed with (survey.yaml's
+  // time_offset_sigma_s). The refinement keeps d, but an error in it moves
+  // every line along the trajectory, and T_C_U absorbs that: the stated
+  // 1-sigma adds T_C_U's sensitivity to d times this (a "consider"
+  // covariance; refineExtrinsicFromTiePoints). 0: the line times are exact.
+  double time_offset_sigma_s = 0.0;
 };
 
 struct ExtrinsicRefinementResult {
@@ -33,6 +39,12 @@ struct ExtrinsicRefinementResult {
   // nullopt when not refined or the covariance is undefined.
   std::optional<Eigen::Vector3d> sigma_rotation_deg;
   std::optional<Eigen::Vector3d> sigma_translation_m;
+  // How T_C_U moves per second of d (rotation about U's axes in deg/s,
+  // translation along C's in m/s), when prior.time_offset_sigma_s > 0; the
+  // 1-sigma above includes it times that sigma.
+  std::optional<Eigen::Vector3d> rotation_per_time_offset_deg_s;
+  std::optional<Eigen::Vector3d> translation_per_time_offset_m_s;
+  double time_offset_sigma_s = 0.0;  // prior.time_offset_sigma_s, for the summary
 
   // Matching.
   std::int64_t patches = 0;          // lattice patches tried
@@ -57,6 +69,12 @@ struct ExtrinsicRefinementResult {
 };
 
 // Step 4 alone: refine T_C_U from tie points with the lines' camera poses.
+// The 1-sigma is the marginal covariance of T_C_U at the solution, plus,
+// when prior.time_offset_sigma_s > 0, what the unknown error of d adds:
+// the problem is solved again with every tie point's line pose taken
+// +-5 ms along the lines (interpolated between them), the difference of the
+// two solutions over 10 ms is T_C_U's sensitivity to d, S, and each
+// component's variance becomes sigma^2 + (S sigma_d)^2.
 // `line_poses` are T_W_U made with T_C_U_lines (any order; each tie point's
 // line must be among them, else it is skipped with a warning). With fewer
 // than options.min_tie_points usable tie points T_C_U is left at

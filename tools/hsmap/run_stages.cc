@@ -219,7 +219,7 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
   const fs::path calibration_yaml = options.out / results_paths::calibration_yaml;
   RunCalibration calibration = readRunCalibration(calibration_yaml);
   const ExtrinsicPrior prior{toSe3(survey.config.uhi.T_C_U), survey.config.uhi.sigma_rotation_deg,
-                             survey.config.uhi.sigma_translation_m};
+                             survey.config.uhi.sigma_translation_m, survey.config.uhi.time_offset_sigma_s};
   for (int round = 1; round <= options.extrinsic_rounds; ++round) {
     const SE3d T_C_U_lines = toSe3(calibration.T_C_U);
     out << "products: extrinsic refinement, round " << round << " of " << options.extrinsic_rounds << "\n";
@@ -248,7 +248,8 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
     calibration.warnings = {"T_C_U refined from the RGB and hyperspectral ortho-images (" +
                                 std::to_string(result.inliers) + " tie points, round " +
                                 std::to_string(round) + "); time_offset_s is the survey.yaml guess: the " +
-                                calibration.variant + " variant does not estimate it"};
+                                calibration.variant + " variant does not estimate it, and T_C_U's 1-sigma " +
+                                "includes what the guess's own 1-sigma can move it by"};
     writeRunCalibration(calibration_yaml, calibration);
     out << "products: wrote the refined T_C_U into " << calibration_yaml.string() << " and the scan line poses "
         << "into " << results_paths::trajectory_uhi_lines << "; casting again\n";

@@ -31,7 +31,7 @@ double seabedDepth(double north, double east) {
 
 // RGB camera looking down (z_C = down), moving north 1 cm per line with a
 // little wobble.
-SE3d cameraPose(int line) {
+SE3d cameraPose(double line) {
   const Eigen::Vector3d wobble(0.02 * std::sin(0.05 * line), 0.015 * std::cos(0.03 * line), 0.0);
   return SE3d(expSO3(wobble), Eigen::Vector3d(0.01 * line, 0.05 * std::sin(0.02 * line), 0.0));
 }
@@ -128,6 +128,56 @@ TEST(ExtrinsicRefinement, RecoversAKnownExtrinsicErrorFromTiePoints) {
   for (int i = 0; i < 3; ++i)
     EXPECT_LT(std::abs(t_error[i]), 4.0 * (*result.sigma_translation_m)[i]);
   EXPECT_NE(result.summary().find("inliers"), std::string::npos);
+}
+
+// The survey's time offset guess 15 ms (1.5 lines) off: every line is
+// posed where the camera was 1.5 lines later. The refinement keeps d, so
+// T_C_U absorbs the shift; its 1-sigma must cover that when it is told d's
+// own 1-sigma, and does not without it (the premise).
+TEST(ExtrinsicRefinement, TheOneSigmaIncludesWhatTheTimeOffsetsUncertaintyMovesTheExtrinsicBy) {
+  std::mt19937 rng(7);
+  const std::vector<ExtrinsicTiePoint> ties = tiePoints(400, 0.5, rng);
+  std::vector<LinePose> late_lines;
+  for (int k = 0; k < 400; ++k) late_lines.push_back({k, 0.01 * k, cameraPose(k + 1.5) * guessedExtrinsic()});
+  ExtrinsicRefinementOptions options;
+  options.sigma_match_m = 0.5 * 2.0 / 1500.0;
+  auto largestErrorOverSigma = [&](const ExtrinsicRefinementResult& result) {
+    const Eigen::Vector3d rotation_deg =
+        logSO3(Eigen::Quaterniond(trueExtrinsic().q.conjugate() * result.T_C_U.q)) / kDeg;
+    const Eigen::Vector3d translation = result.T_C_U.t - trueExtrinsic().t;
+    return std::max((rotation_deg.cwiseAbs().array() / result.sigma_rotation_deg->array()).maxCoeff(),
+                    (translation.cwiseAbs().array() / result.sigma_translation_m->array()).maxCoeff());
+  };
+
+  ExtrinsicPrior exact_times = surveyPrior();
+  exact_times.time_offset_sigma_s = 0.0;
+  const ExtrinsicRefinementResult without =
+      refineExtrinsicFromTiePoints(ties, late_lines, guessedExtrinsic(), uhiCamera(), exact_times, options);
+  ASSERT_TRUE(without.refined && without.sigma_rotation_deg && without.sigma_translation_m) << without.summary();
+  EXPECT_FALSE(without.translation_per_time_offset_m_s.has_value());
+  EXPECT_GT(largestErrorOverSigma(without), 5.0) << without.summary();
+
+  ExtrinsicPrior uncertain_times = surveyPrior();
+  uncertain_times.time_offset_sigma_s = 0.02;
+  const ExtrinsicRefinementResult with =
+      refineExtrinsicFromTiePoints(ties, late_lines, guessedExtrinsic(), uhiCamera(), uncertain_times, options);
+  ASSERT_TRUE(with.refined && with.sigma_rotation_deg && with.sigma_translation_m) << with.summary();
+  ASSERT_TRUE(with.translation_per_time_offset_m_s.has_value()) << with.summary();
+  // The sensitivity predicts how far the 15 ms moved the solution from the
+  // one with the lines on time.
+  std::vector<LinePose> on_time_lines;
+  for (int k = 0; k < 400; ++k) on_time_lines.push_back({k, 0.01 * k, cameraPose(k) * guessedExtrinsic()});
+  const ExtrinsicRefinementResult on_time =
+      refineExtrinsicFromTiePoints(ties, on_time_lines, guessedExtrinsic(), uhiCamera(), uncertain_times, options);
+  ASSERT_TRUE(on_time.refined) << on_time.summary();
+  const Eigen::Vector3d moved = with.T_C_U.t - on_time.T_C_U.t;
+  const Eigen::Vector3d predicted = *with.translation_per_time_offset_m_s * 0.015;
+  EXPECT_GT(moved.norm(), 0.01);
+  EXPECT_LT((moved - predicted).norm(), 0.25 * moved.norm()) << moved.transpose() << " / " << predicted.transpose();
+  EXPECT_LT(largestErrorOverSigma(with), 3.0) << with.summary();
+  EXPECT_NE(with.summary().find("per ms of the time offset"), std::string::npos);
+  // Same solution either way: only the stated uncertainty differs.
+  EXPECT_LT(rotationErrorDeg(with.T_C_U, without.T_C_U), 1e-9);
 }
 
 TEST(ExtrinsicRefinement, WithoutTiePointsKeepsTheExtrinsicAndSaysSo) {
