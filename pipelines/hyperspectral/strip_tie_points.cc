@@ -163,6 +163,35 @@ void predictedStripRow(const ScanLineHits& hits, const SE3d& T_W_C, const cv::Ma
   }
 }
 
+// Interpolates, along the row, every run of at most `max_run` NaN pixels
+// that has valid pixels on both sides; longer runs and runs at the ends
+// stay NaN. Returns the pixels filled.
+std::int64_t fillShortInvalidRuns(cv::Mat& strip, int max_run) {
+  std::int64_t filled = 0;
+  if (max_run <= 0) return filled;
+  for (int r = 0; r < strip.rows; ++r) {
+    float* row = strip.ptr<float>(r);
+    int c = 0;
+    while (c < strip.cols) {
+      if (std::isfinite(row[c])) {
+        ++c;
+        continue;
+      }
+      const int begin = c;
+      while (c < strip.cols && !std::isfinite(row[c])) ++c;
+      const int length = c - begin;
+      if (begin == 0 || c == strip.cols || length > max_run) continue;
+      const float left = row[begin - 1], right = row[c];
+      for (int k = 0; k < length; ++k) {
+        const float a = float(k + 1) / float(length + 1);
+        row[begin + k] = (1.0f - a) * left + a * right;
+      }
+      filled += length;
+    }
+  }
+  return filled;
+}
+
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("StripTiePointOptions: " + what);
 }
@@ -180,6 +209,7 @@ void StripTiePointOptions::validate() const {
               frame_margin_px >= 0.0,
           "min_peak_margin, exclusion_radius_m, min_template_std and frame_margin_px must be >= 0");
   require(line_phases >= 1 && line_phases <= 16, "line_phases must be in [1, 16]");
+  require(fill_invalid_columns >= 0, "fill_invalid_columns must be >= 0");
 }
 
 StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTiePointOptions& o,
@@ -278,6 +308,7 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       }
     }
   }
+  out.counts.filled_pixels = fillShortInvalidRuns(real, o.fill_invalid_columns);
   out.counts.frames_decoded = grey_frames.decoded();
   out.counts.frames_undecodable = grey_frames.undecodable();
 
@@ -379,6 +410,9 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
       << out.counts.frames_decoded << " RGB frames"
       << (out.counts.frames_undecodable > 0
               ? " (" + std::to_string(out.counts.frames_undecodable) + " undecodable: their lines left out)"
+              : std::string())
+      << (out.counts.filled_pixels > 0
+              ? "; " + std::to_string(out.counts.filled_pixels) + " unusable strip pixels interpolated"
               : std::string())
       << "; " << out.counts.patches << " patches, "
       << out.counts.textured << " textured, " << out.counts.matched << " matched, "

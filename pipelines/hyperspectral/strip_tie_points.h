@@ -45,6 +45,7 @@
 // the joint solve's own peak there).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <iosfwd>
 #include <vector>
 
@@ -79,6 +80,13 @@ struct StripTiePointOptions {
   // Along the track the strips are sampled every 14 mm or so; on the
   // lines alone the sub-pixel peak is pulled towards whole lines.
   int line_phases = 4;
+  // Runs of at most this many unusable columns in a row of the real strip
+  // (a dead or saturated sample, a pixel equal to the cube's data ignore
+  // value) are interpolated from the valid columns on both sides before
+  // matching: a patch must be valid throughout, so a dead sample column
+  // would otherwise remove every patch across it, and a few scattered bad
+  // pixels most of the strip's patches. 0: none filled.
+  int fill_invalid_columns = 2;
 
   // std::invalid_argument naming the field and what is allowed.
   void validate() const;
@@ -106,6 +114,7 @@ struct StripTiePointCounts {
   int tie_points = 0;  // with a surface point interpolated at the match
   int frames_decoded = 0;
   int frames_undecodable = 0;  // InputError from the frame source: their lines predict nothing
+  std::int64_t filled_pixels = 0;  // real strip pixels interpolated (fill_invalid_columns)
   double across_pixel_m = 0.0;  // median strip pixel on the ground, across the track
   double along_pixel_m = 0.0;   // and along it (line spacing)
 };

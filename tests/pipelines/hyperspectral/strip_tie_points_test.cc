@@ -6,18 +6,25 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
+#include "core/io/envi_reader.h"
+#include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/pose_tables.h"
 #include "core/survey/survey.h"
 #include "pipelines/hyperspectral/scan_line_caster.h"
 #include "pipelines/hyperspectral/strip_tie_points.h"
+#include "core/util/median.h"
 #include "tests/pipelines/hyperspectral/tiny_products_fixture.h"
+#include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
@@ -82,9 +89,32 @@ struct TinyStrip {
   }
 };
 
-double median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
-  return values[values.size() / 2];
+double median(std::vector<double> values) { return upperMedian(std::move(values)); }
+
+// A float32 copy of `cube` with dead samples as another sensor would have
+// them: two adjacent sample columns at the data ignore value in every line
+// and band, and about one pixel in a hundred NaN in every band.
+std::filesystem::path cubeWithDeadPixels(const EnviReader& cube, const std::filesystem::path& folder) {
+  EnviHeader header = cube.header();
+  header.data_type = EnviDataType::float32;
+  header.interleave = EnviInterleave::bil;
+  header.byte_order = 0;
+  header.header_offset = 0;
+  header.other_fields.emplace_back("data ignore value", "-1");
+  const std::filesystem::path hdr = folder / "cube.hdr";
+  EnviWriter writer(hdr, header);
+  Eigen::MatrixXf line;
+  for (int l = 0; l < cube.lines(); ++l) {
+    cube.readLine(l, line);
+    line.col(100).setConstant(-1.0f);
+    line.col(101).setConstant(-1.0f);
+    for (int s = 0; s < cube.samples(); ++s) {
+      if ((7 * l + s) % 97 == 0) line.col(s).setConstant(std::numeric_limits<float>::quiet_NaN());
+    }
+    writer.writeLine(line);
+  }
+  writer.finish();
+  return hdr;
 }
 
 TEST(StripTiePoints, TieEachRealPixelToThePointItSawDespiteAWrongLinePose) {
@@ -168,6 +198,35 @@ TEST(StripTiePoints, OptionsNameTheFieldThatIsWrong) {
         }
       },
       std::invalid_argument);
+}
+
+// A patch must be valid throughout; without the interpolation of short
+// runs a dead sample column and scattered bad pixels (one in a hundred)
+// leave almost no patch to match.
+TEST(StripTiePoints, DeadSamplesAreInterpolatedInsteadOfRemovingEveryPatchTheyFallIn) {
+  testing::TempFolder folder;
+  TinyStrip strip;
+  const SE3d offset_U(Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.012, 0.005, 0.0));
+  std::ostringstream log;
+  const int clean = findStripTiePoints(strip.inputs(offset_U), tinyOptions(), log).counts.tie_points;
+  ASSERT_GE(clean, 8);
+
+  strip.survey.cube = std::make_unique<EnviReader>(cubeWithDeadPixels(*strip.survey.cube, folder.path()));
+  StripTiePointOptions no_fill = tinyOptions();
+  no_fill.fill_invalid_columns = 0;
+  const StripTiePoints without = findStripTiePoints(strip.inputs(offset_U), no_fill, log);
+  EXPECT_LT(without.counts.tie_points, clean / 4) << log.str();
+
+  const StripTiePoints with = findStripTiePoints(strip.inputs(offset_U), tinyOptions(), log);
+  SCOPED_TRACE(log.str());
+  EXPECT_GT(with.counts.filled_pixels, 2 * strip.survey.cube->lines());
+  EXPECT_GE(with.counts.tie_points, clean - 2);
+  std::vector<double> errors;
+  for (const ExtrinsicTiePoint& tie : with.tie_points) {
+    errors.push_back((tie.p_W - strip.trueHit(tie.line, tie.sample)).norm());
+  }
+  ASSERT_FALSE(errors.empty());
+  EXPECT_LT(median(errors), 0.002);
 }
 
 }  // namespace
