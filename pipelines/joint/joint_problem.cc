@@ -129,6 +129,10 @@ std::string JointResult::summary() const {
       << " INS positions, " << ins_attitude_factors << " INS attitudes, " << tie_inliers
       << " tie points (" << tie_outliers << " outliers removed, " << tie_points_outside_spline
       << " outside the spline), " << smoothness_factors << " smoothness\n";
+  if (rewindows > 0) {
+    out << "  d moved beyond the tie factors' window: the problem was built again around it " << rewindows
+        << " time(s)\n";
+  }
   if (!solved) {
     out << "  not solved\n";
   } else {
@@ -382,6 +386,24 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     }
   }
   if (std::abs(result.time_offset_s - in.time_offset_start_s) > 0.99 * reach) {
+    if (options.max_rewindows > 0) {
+      // Built again around the new d, from this result (see the header).
+      JointInputs next = in;
+      next.spline = result.spline;
+      next.T_C_U_start = result.T_C_U;
+      next.time_offset_start_s = result.time_offset_s;
+      JointOptions fewer = options;
+      --fewer.max_rewindows;
+      JointResult again = solveJointProblem(next, fewer);
+      if (again.solved) {
+        ++again.rewindows;
+        return again;
+      }
+      result.warnings.push_back("the problem built again around d = " +
+                                std::to_string(result.time_offset_s * 1000.0) + " ms was not solved (" +
+                                (again.warnings.empty() ? std::string("no reason given") : again.warnings.front()) +
+                                "): this window's result is kept");
+    }
     result.warnings.push_back("d reached the bound of this round's window (" +
                               std::to_string(reach * 1000.0) +
                               " ms from its start): another round is needed");

@@ -37,7 +37,9 @@
 //
 // The solve runs twice: the tie points beyond their loss scale after the
 // first are removed (outliers), then the problem is solved again from the
-// first's estimate. The 1-sigma of T_C_U and d comes from their joint
+// first's estimate. d is bounded to the tie factors' window around its
+// start; when it ends at the bound, the problem is built again around the
+// new d and solved from the result (JointOptions::max_rewindows). The 1-sigma of T_C_U and d comes from their joint
 // marginal covariance (solvers/marginal_covariance.h) with every other
 // variable free; a component whose 1-sigma is more than
 // `weak_fraction_of_prior` of the prior's is reported as weakly determined
@@ -85,6 +87,12 @@ struct JointOptions {
   double weak_fraction_of_prior = 0.5;
   int max_iterations = 30;
   int num_threads = 0;  // 0: every hardware thread
+  // When d ends the solve at the bound of the tie factors' window (+-0.45
+  // knot intervals from its start), the problem is built again around the
+  // new d (each tie factor's control points chosen anew) and solved from
+  // the result, at most this many times: a time offset guess several knot
+  // intervals off converges in one call instead of asking for more rounds.
+  int max_rewindows = 3;
 };
 
 // A UHI pixel of scan line `line` (recorded time t_recorded) that saw p_W.
@@ -148,6 +156,7 @@ struct JointResult {
   int tie_points_outside_spline = 0;
   int tie_inliers = 0;
   int tie_outliers = 0;
+  int rewindows = 0;  // times the problem was built again around a new d (max_rewindows)
   // The inlier tie points' residuals after the final solve, on the ground
   // (metres at each pixel's range): RMS across and along the line.
   double rms_tie_across_m = 0.0, rms_tie_along_m = 0.0;

@@ -253,15 +253,19 @@ TEST(JointProblem, TooFewTiePointsLeavesTheStartInPlaceWithAWarning) {
 
 TEST(JointProblem, TimeOffsetStaysInsideTheFactorsWindow) {
   // A start 150 ms off: the tie factors' window covers +-0.45 knot
-  // intervals (at most 90 ms here), so d is bounded there and the result
-  // asks for another round instead of extrapolating the spline.
+  // intervals (at most 90 ms here), so d is bounded there and, without
+  // building the problem again around the new d, the result asks for
+  // another round instead of extrapolating the spline.
   const ReducedSurvey survey = makeSurvey(4);
   JointInputs inputs = inputsOf(survey);
   inputs.time_offset_start_s = survey.d_truth - 0.15;
   inputs.time_offset_prior_s = inputs.time_offset_start_s;
   inputs.time_offset_sigma_s = 0.2;
-  const JointResult result = solveJointProblem(inputs, testOptions());
+  JointOptions one_window = testOptions();
+  one_window.max_rewindows = 0;
+  const JointResult result = solveJointProblem(inputs, one_window);
   ASSERT_TRUE(result.solved) << result.summary();
+  EXPECT_EQ(result.rewindows, 0);
   const double reach = 0.45 * inputs.spline.dt();
   ASSERT_LT(reach, 0.15);
   EXPECT_LE(std::abs(result.time_offset_s - inputs.time_offset_start_s), reach + 1e-9);
@@ -270,6 +274,26 @@ TEST(JointProblem, TimeOffsetStaysInsideTheFactorsWindow) {
     asks_for_round |= warning.find("another round is needed") != std::string::npos;
   }
   EXPECT_TRUE(asks_for_round) << result.summary();
+}
+
+TEST(JointProblem, ATimeOffsetBeyondTheWindowIsReachedByBuildingTheProblemAgainAroundIt) {
+  // The same start 150 ms off: built again around each bound d reaches,
+  // the solve recovers d within its stated noise in one call.
+  const ReducedSurvey survey = makeSurvey(4);
+  JointInputs inputs = inputsOf(survey);
+  inputs.time_offset_start_s = survey.d_truth - 0.15;
+  inputs.time_offset_prior_s = inputs.time_offset_start_s;
+  inputs.time_offset_sigma_s = 0.2;
+  const JointResult result = solveJointProblem(inputs, testOptions());
+  ASSERT_TRUE(result.solved) << result.summary();
+  EXPECT_GE(result.rewindows, 1);
+  ASSERT_TRUE(result.time_offset_sigma_s.has_value()) << result.summary();
+  EXPECT_LT(std::abs(result.time_offset_s - survey.d_truth), 3.0 * *result.time_offset_sigma_s)
+      << result.summary();
+  for (const std::string& warning : result.warnings) {
+    EXPECT_EQ(warning.find("another round is needed"), std::string::npos) << warning;
+  }
+  EXPECT_NE(result.summary().find("built again around it"), std::string::npos);
 }
 
 TEST(JointSpline, KnotSpacingFollowsTheVehiclesMotion) {
