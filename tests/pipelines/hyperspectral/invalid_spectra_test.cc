@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "core/io/envi_reader.h"
-#include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
 #include "pipelines/hyperspectral/hyperspectral_ortho.h"
 #include "pipelines/hyperspectral/scan_line_caster.h"
+#include "tests/pipelines/hyperspectral/spoiled_cube.h"
 #include "tests/pipelines/hyperspectral/tiny_products_fixture.h"
 #include "tests/support/temp_folder.h"
 
@@ -28,23 +28,10 @@ constexpr float kIgnoreValue = -1.0f;
 
 // A float32 copy of the survey's cube with the two samples spoiled.
 std::filesystem::path spoiledCube(const EnviReader& cube, const std::filesystem::path& folder) {
-  EnviHeader header = cube.header();
-  header.data_type = EnviDataType::float32;
-  header.interleave = EnviInterleave::bil;
-  header.byte_order = 0;
-  header.header_offset = 0;
-  header.other_fields.emplace_back("data ignore value", "-1");
-  const std::filesystem::path hdr = folder / "cube.hdr";
-  EnviWriter writer(hdr, header);
-  Eigen::MatrixXf line;
-  for (int l = 0; l < cube.lines(); ++l) {
-    cube.readLine(l, line);
+  return testing::spoiledFloatCube(cube, folder, kIgnoreValue, [](int, Eigen::MatrixXf& line) {
     line(3, kNanSample) = std::numeric_limits<float>::quiet_NaN();
     line.col(kIgnoreSample).setConstant(kIgnoreValue);
-    writer.writeLine(line);
-  }
-  writer.finish();
-  return hdr;
+  });
 }
 
 TEST(InvalidSpectra, AreCountedAndNotPainted) {

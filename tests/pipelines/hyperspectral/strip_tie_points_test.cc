@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "core/io/envi_reader.h"
-#include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/pose_tables.h"
@@ -23,6 +22,7 @@
 #include "pipelines/hyperspectral/scan_line_caster.h"
 #include "pipelines/hyperspectral/strip_tie_points.h"
 #include "core/util/median.h"
+#include "tests/pipelines/hyperspectral/spoiled_cube.h"
 #include "tests/pipelines/hyperspectral/tiny_products_fixture.h"
 #include "tests/support/temp_folder.h"
 
@@ -95,26 +95,13 @@ double median(std::vector<double> values) { return upperMedian(std::move(values)
 // them: two adjacent sample columns at the data ignore value in every line
 // and band, and about one pixel in a hundred NaN in every band.
 std::filesystem::path cubeWithDeadPixels(const EnviReader& cube, const std::filesystem::path& folder) {
-  EnviHeader header = cube.header();
-  header.data_type = EnviDataType::float32;
-  header.interleave = EnviInterleave::bil;
-  header.byte_order = 0;
-  header.header_offset = 0;
-  header.other_fields.emplace_back("data ignore value", "-1");
-  const std::filesystem::path hdr = folder / "cube.hdr";
-  EnviWriter writer(hdr, header);
-  Eigen::MatrixXf line;
-  for (int l = 0; l < cube.lines(); ++l) {
-    cube.readLine(l, line);
+  return testing::spoiledFloatCube(cube, folder, -1.0f, [&](int l, Eigen::MatrixXf& line) {
     line.col(100).setConstant(-1.0f);
     line.col(101).setConstant(-1.0f);
     for (int s = 0; s < cube.samples(); ++s) {
       if ((7 * l + s) % 97 == 0) line.col(s).setConstant(std::numeric_limits<float>::quiet_NaN());
     }
-    writer.writeLine(line);
-  }
-  writer.finish();
-  return hdr;
+  });
 }
 
 TEST(StripTiePoints, TieEachRealPixelToThePointItSawDespiteAWrongLinePose) {

@@ -251,16 +251,23 @@ TEST(JointProblem, TooFewTiePointsLeavesTheStartInPlaceWithAWarning) {
             "only 5 usable cross-modal tie points (need 20): the joint problem is not solved");
 }
 
+// The reduced survey's inputs with d's start (and prior) 150 ms off, its
+// prior sigma 200 ms.
+JointInputs inputsStarting150msOff(const ReducedSurvey& survey) {
+  JointInputs inputs = inputsOf(survey);
+  inputs.time_offset_start_s = survey.d_truth - 0.15;
+  inputs.time_offset_prior_s = inputs.time_offset_start_s;
+  inputs.time_offset_sigma_s = 0.2;
+  return inputs;
+}
+
 TEST(JointProblem, TimeOffsetStaysInsideTheFactorsWindow) {
   // A start 150 ms off: the tie factors' window covers +-0.45 knot
   // intervals (at most 90 ms here), so d is bounded there and, without
   // building the problem again around the new d, the result asks for
   // another round instead of extrapolating the spline.
   const ReducedSurvey survey = makeSurvey(4);
-  JointInputs inputs = inputsOf(survey);
-  inputs.time_offset_start_s = survey.d_truth - 0.15;
-  inputs.time_offset_prior_s = inputs.time_offset_start_s;
-  inputs.time_offset_sigma_s = 0.2;
+  const JointInputs inputs = inputsStarting150msOff(survey);
   JointOptions one_window = testOptions();
   one_window.max_rewindows = 0;
   const JointResult result = solveJointProblem(inputs, one_window);
@@ -280,10 +287,7 @@ TEST(JointProblem, ATimeOffsetBeyondTheWindowIsReachedByBuildingTheProblemAgainA
   // The same start 150 ms off: built again around each bound d reaches,
   // the solve recovers d within its stated noise in one call.
   const ReducedSurvey survey = makeSurvey(4);
-  JointInputs inputs = inputsOf(survey);
-  inputs.time_offset_start_s = survey.d_truth - 0.15;
-  inputs.time_offset_prior_s = inputs.time_offset_start_s;
-  inputs.time_offset_sigma_s = 0.2;
+  const JointInputs inputs = inputsStarting150msOff(survey);
   const JointResult result = solveJointProblem(inputs, testOptions());
   ASSERT_TRUE(result.solved) << result.summary();
   EXPECT_GE(result.rewindows, 1);
