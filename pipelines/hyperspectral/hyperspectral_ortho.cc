@@ -17,8 +17,10 @@
 #include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
+#include "core/util/free_space.h"
 #include "core/util/input_error.h"
 #include "core/util/median.h"
+#include "core/util/message_text.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/hyperspectral/ortho_accumulator.h"
@@ -316,6 +318,15 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
 
   // ---- 3. tiles ----------------------------------------------------------------
   std::filesystem::create_directories(out_folder);
+  {
+    // The ENVI ortho-image (4 bytes a value) and its ancillary layers (16
+    // bytes a pixel), before hours of casting can end on a full disk.
+    const std::uint64_t pixels = std::uint64_t(grid.rows) * std::uint64_t(grid.cols);
+    requireFreeSpace(out_folder, pixels * (std::uint64_t(bands) * 4 + 16),
+                     "hyperspectral ortho-image (" + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
+                         " pixels of " + fixedDecimals(grid.pixel_m * 1000.0, 1) + " mm, " + std::to_string(bands) +
+                         " bands; a larger --ortho-pixel shrinks it by its square)");
+  }
   report.ortho_hdr = out_folder / "ortho.hdr";
   report.ancillary_hdr = out_folder / "ancillary.hdr";
   {
