@@ -217,13 +217,10 @@ ExtrinsicRefinementResult refineExtrinsicFromTiePoints(
   // tie points' line poses +-delta along the lines.
   if (prior.time_offset_sigma_s > 0.0 && result.sigma_rotation_deg && result.sigma_translation_m) {
     result.time_offset_sigma_s = prior.time_offset_sigma_s;
-    std::vector<double> periods;  // seconds per line
-    std::vector<const LinePose*> by_line;
-    for (const LinePose& pose : line_poses) by_line.push_back(&pose);
-    std::sort(by_line.begin(), by_line.end(), [](const LinePose* a, const LinePose* b) { return a->line < b->line; });
-    for (std::size_t i = 1; i < by_line.size(); ++i) {
-      const long long lines = by_line[i]->line - by_line[i - 1]->line;
-      if (lines > 0) periods.push_back((by_line[i]->t - by_line[i - 1]->t) / double(lines));
+    std::vector<double> periods;  // seconds per line, between consecutive posed lines
+    for (const LinePose& pose : line_poses) {
+      const auto next = pose_of_line.find(pose.line + 1);
+      if (next != pose_of_line.end()) periods.push_back(next->second->t - pose.t);
     }
     const double period = upperMedian(periods);
     constexpr double kDelta = 0.005;  // s: T_C_U moves linearly with d over this

@@ -7,9 +7,11 @@
 #include <cstdlib>
 #include <future>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
@@ -62,6 +64,15 @@ std::vector<LineMotion> neighbourMotions(const std::vector<LinePose>& line_poses
   }
   return motions;
 }
+// The first and last samples of a line that hit the surface; nullopt when none does.
+std::optional<std::pair<int, int>> hitSampleRange(const ScanLineHits& hits) {
+  const int samples = int(hits.p_W.size());
+  int first = 0, last = samples - 1;
+  while (first < samples && !hits.hit(first)) ++first;
+  while (last >= first && !hits.hit(last)) --last;
+  if (first > last) return std::nullopt;
+  return std::make_pair(first, last);
+}
 double lineSpacingAt(const std::vector<LineMotion>& motions, const Eigen::Vector3d& p_W) {
   double spacing = 0.0;
   for (const LineMotion& m : motions) spacing = std::max(spacing, (m.A * p_W + m.t).head<2>().norm());
@@ -71,12 +82,12 @@ double lineSpacingAt(const std::vector<LineMotion>& motions, const Eigen::Vector
 // (the displacement is affine in the point, so along a line of hits it is
 // largest at an end or, over relief, near them); 0 without hits.
 double lineSpacingM(const std::vector<LinePose>& line_poses, std::size_t pose, const ScanLineHits& hits) {
-  const int samples = int(hits.p_W.size());
-  int first = 0, last = samples - 1, middle = samples / 2;
-  while (first < samples && !hits.hit(first)) ++first;
-  while (last >= first && !hits.hit(last)) --last;
-  if (first > last) return 0.0;
-  while (middle < last && !hits.hit(middle)) ++middle;
+  const std::optional<std::pair<int, int>> range = hitSampleRange(hits);
+  if (!range) return 0.0;
+  const auto [first, last] = *range;
+  // A hit at or after the line's centre (last is one, so the walk stops there).
+  int middle = std::clamp(int(hits.p_W.size()) / 2, first, last);
+  while (!hits.hit(middle)) ++middle;
   const std::vector<LineMotion> motions = neighbourMotions(line_poses, pose);
   return std::max({lineSpacingAt(motions, hits.p_W[std::size_t(first)]),
                    lineSpacingAt(motions, hits.p_W[std::size_t(middle)]),
@@ -90,11 +101,9 @@ double lineSpacingM(const std::vector<LinePose>& line_poses, std::size_t pose, c
 void hitReachPx(const std::vector<LinePose>& line_poses, std::size_t pose, const ScanLineHits& hits,
                 double pixel_m, double edge_m, std::vector<float>& reach_px) {
   std::fill(reach_px.begin(), reach_px.end(), 0.0f);
-  const int samples = int(reach_px.size());
-  int first = 0, last = samples - 1;
-  while (first < samples && !hits.hit(first)) ++first;
-  while (last >= first && !hits.hit(last)) --last;
-  if (first > last) return;
+  const std::optional<std::pair<int, int>> range = hitSampleRange(hits);
+  if (!range) return;
+  auto [first, last] = *range;
   const Eigen::Vector2d first_NE = hits.p_W[std::size_t(first)].head<2>();
   const Eigen::Vector2d last_NE = hits.p_W[std::size_t(last)].head<2>();
   auto farFromEnds = [&](int s) {

@@ -379,12 +379,6 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   result.spline = SE3Splined(spline.t0(), spline.dt(), std::move(control_points));
   result.T_C_U = SE3d(values.poseRotation(E(0)).normalized(), values.poseTranslation(E(0)));
   result.time_offset_s = values.scalar(D(0));
-  tieResidualsOnGround(ties, keep, in, result, result.rms_tie_across_m, result.rms_tie_along_m);
-  for (const auto& [id, count] : seen_by) {
-    if (values.contains(L(std::uint64_t(id)))) {
-      result.landmarks_W.emplace_back(id, values.point(L(std::uint64_t(id))));
-    }
-  }
   if (std::abs(result.time_offset_s - in.time_offset_start_s) > 0.99 * reach) {
     if (options.max_rewindows > 0) {
       // Built again around the new d, from this result (see the header).
@@ -408,7 +402,12 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
                               std::to_string(reach * 1000.0) +
                               " ms from its start): another round is needed");
   }
-
+  tieResidualsOnGround(ties, keep, in, result, result.rms_tie_across_m, result.rms_tie_along_m);
+  for (const auto& [id, count] : seen_by) {
+    if (values.contains(L(std::uint64_t(id)))) {
+      result.landmarks_W.emplace_back(id, values.point(L(std::uint64_t(id))));
+    }
+  }
   // 1-sigma of T_C_U and d with every other variable free.
   const auto start = std::chrono::steady_clock::now();
   try {

@@ -11,7 +11,6 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
-#include <utility>
 #include <vector>
 
 #include "core/io/envi_reader.h"
@@ -89,8 +88,6 @@ struct TinyStrip {
   }
 };
 
-double median(std::vector<double> values) { return upperMedian(std::move(values)); }
-
 // A float32 copy of `cube` with dead samples as another sensor would have
 // them: two adjacent sample columns at the data ignore value in every line
 // and band, and about one pixel in a hundred NaN in every band.
@@ -127,8 +124,8 @@ TEST(StripTiePoints, TieEachRealPixelToThePointItSawDespiteAWrongLinePose) {
   }
   // The prediction is off by the offset; the tie points by less than a
   // third of the strip's pixel (6.3 mm across, 13.7 mm along).
-  EXPECT_GT(median(predicted_errors), 0.010);
-  EXPECT_LT(median(tie_errors), 0.002);
+  EXPECT_GT(upperMedian(predicted_errors), 0.010);
+  EXPECT_LT(upperMedian(tie_errors), 0.002);
 }
 
 TEST(StripTiePoints, PhasesBetweenTheLinesFindTheShiftAlongTheTrackFinerThanTheLines) {
@@ -152,7 +149,7 @@ TEST(StripTiePoints, PhasesBetweenTheLinesFindTheShiftAlongTheTrackFinerThanTheL
   // pulled towards whole lines: 4 patches match here, and in the test
   // above the median error along the track is 2.4 mm. A quarter-line grid
   // gets within 1 mm.
-  EXPECT_LT(median(along_errors), 0.001);
+  EXPECT_LT(upperMedian(along_errors), 0.001);
 }
 
 TEST(StripTiePoints, RejectsBandWeightsThatDoNotMatchTheCube) {
@@ -213,7 +210,7 @@ TEST(StripTiePoints, DeadSamplesAreInterpolatedInsteadOfRemovingEveryPatchTheyFa
     errors.push_back((tie.p_W - strip.trueHit(tie.line, tie.sample)).norm());
   }
   ASSERT_FALSE(errors.empty());
-  EXPECT_LT(median(errors), 0.002);
+  EXPECT_LT(upperMedian(errors), 0.002);
 }
 
 }  // namespace
