@@ -104,6 +104,17 @@ void cumulativeBasis(const T& u, std::array<T, 4>* b, std::array<T, 4>* db, std:
 
 }  // namespace spline_detail
 
+// The uniform cubic B-spline basis B_j(u), j = 0..3: how much each of a
+// segment's four control points weighs in the pose at normalised time u
+// (B_j = Bt_j - Bt_{j+1} of the cumulative basis; they sum to 1). The last,
+// u^3 / 6, is why a control point barely moves the start of its segment.
+inline std::array<double, 4> uniformCubicBasis(double u) {
+  std::array<double, 4> cumulative;
+  spline_detail::cumulativeBasis<double>(u, &cumulative, nullptr, nullptr);
+  return {cumulative[0] - cumulative[1], cumulative[1] - cumulative[2], cumulative[2] - cumulative[3],
+          cumulative[3]};
+}
+
 enum class SplineDerivatives { kVelocity, kAcceleration };
 
 // Kinematics from the four active control points (T_i .. T_{i+3}) at

@@ -251,11 +251,34 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       Eigen::Vector3d::Constant(options.sigma_angular_acceleration * dt2);
   const NoiseModel smoothness_noise = NoiseModel::fromSigmas(smoothness_sigmas);
 
-  // Control points whose support holds few posed frames get the smoothness prior.
-  std::vector<int> frames_in_support(std::size_t(spline.numControlPoints()), 0);
+  // Where the frames hold a control point weakly it gets the smoothness
+  // prior: fewer than min_frames_in_support posed frames in its support, or
+  // less than one frame's worth of their basis weight (a frame spreads a
+  // weight of 1 over its segment's four control points). The second
+  // matters past the last posed frame: the spline's last segment may reach
+  // most of a knot interval beyond it, and there the last control point
+  // moves the poses by at most u^3/6 of itself, so the frames barely hold
+  // it and one INS fix (decimetres of noise) placed it, with the scan lines
+  // posed there, decimetres off.
+  const int spline_points = spline.numControlPoints();
+  std::vector<int> frames_in_support(std::size_t(spline_points), 0);
+  std::vector<double> frame_weight(std::size_t(spline_points), 0.0);
   for (double t : posed_frame_times) {
-    const int i = timing.segmentAt(t).first_control_point;
+    const SplineSegment segment = timing.segmentAt(t);
+    const int i = segment.first_control_point;
     for (int j = i; j < i + 4; ++j) ++frames_in_support[std::size_t(j)];
+    const std::array<double, 4> weights = uniformCubicBasis(segment.u);
+    for (int k = 0; k < 4; ++k) frame_weight[std::size_t(i + k)] += weights[std::size_t(k)];
+  }
+  auto thin = [&](int j) {
+    return frames_in_support[std::size_t(j)] < options.min_frames_in_support ||
+           frame_weight[std::size_t(j)] < options.min_frame_weight_in_support;
+  };
+  // The factor at j ties j - 1, j and j + 1: it is added wherever one of
+  // them is thin, so the first and last control points are held too.
+  std::vector<int> smoothed;
+  for (int j = 1; j + 1 < spline_points; ++j) {
+    if (thin(j - 1) || thin(j) || thin(j + 1)) smoothed.push_back(j);
   }
 
   auto buildGraph = [&](const std::vector<bool>& keep_tie, std::vector<std::size_t>* tie_factor_index) {
@@ -280,8 +303,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
                                              attitude_noise);
       ++result.ins_attitude_factors;
     }
-    for (int j = 1; j + 1 < spline.numControlPoints(); ++j) {
-      if (frames_in_support[std::size_t(j)] >= options.min_frames_in_support) continue;
+    for (const int j : smoothed) {
       graph.emplace<SplineSmoothnessFactor>(std::uint64_t(j), smoothness_noise);
       ++result.smoothness_factors;
     }

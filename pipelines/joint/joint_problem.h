@@ -28,9 +28,10 @@
 //     line's time (see JointInputs::surface_trajectory);
 //   - the survey's priors on T_C_U and d (ExtrinsicPriorFactor,
 //     TimeOffsetPriorFactor);
-//   - spline smoothness only where the data are thin: at a control point
-//     whose support (the four segments it moves) holds fewer than
-//     `min_frames_in_support` posed frames.
+//   - spline smoothness only where the data are thin: around a control
+//     point whose support (the four segments it moves) holds fewer than
+//     `min_frames_in_support` posed frames or less than one frame's worth
+//     of their basis weight (the end of the spline past the last frame).
 // Weights: pixels at pixel_sigma_px; tie points at sigma_match_m on the
 // ground over the pixel's range; INS and priors as the survey states them;
 // smoothness as a prior on the vehicle's accelerations (docs/JOINT.md).
@@ -82,6 +83,9 @@ struct JointOptions {
   double tie_robust_scale = 3.0;  // Cauchy, in sigmas
   int min_tie_points = 20;
   int min_frames_in_support = 3;
+  // ... and at least this much of the frames' B-spline basis weight (one
+  // frame's worth): the control points past the last posed frame.
+  double min_frame_weight_in_support = 1.0;
   double sigma_linear_acceleration = 0.5;   // m/s^2, the smoothness prior
   double sigma_angular_acceleration = 0.5;  // rad/s^2
   double weak_fraction_of_prior = 0.5;

@@ -85,6 +85,25 @@ TEST(SplineSegment, RejectsTimesOutsideTheValidRange) {
   EXPECT_THROW(SE3Splined(0.0, 0.0, std::vector<SE3d>(4)), std::invalid_argument);
 }
 
+TEST(SplineSegment, UniformCubicBasisIsTheTextbookOneAndSumsToOne) {
+  for (const double u : {0.0, 0.2, 0.5, 0.9, 1.0}) {
+    SCOPED_TRACE("u = " + std::to_string(u));
+    const std::array<double, 4> b = uniformCubicBasis(u);
+    EXPECT_NEAR(b[0], std::pow(1.0 - u, 3) / 6.0, 1e-15);
+    EXPECT_NEAR(b[1], (3.0 * u * u * u - 6.0 * u * u + 4.0) / 6.0, 1e-15);
+    EXPECT_NEAR(b[2], (-3.0 * u * u * u + 3.0 * u * u + 3.0 * u + 1.0) / 6.0, 1e-15);
+    EXPECT_NEAR(b[3], u * u * u / 6.0, 1e-15);
+    EXPECT_NEAR(b[0] + b[1] + b[2] + b[3], 1.0, 1e-15);
+  }
+  // A straight line through translation-only control points: the pose is
+  // the basis-weighted mean of the four, so the weights are the spline's own.
+  std::vector<SE3d> control_points;
+  for (const double x : {0.0, 1.0, 5.0, 2.0}) control_points.emplace_back(Eigen::Quaterniond::Identity(), Eigen::Vector3d(x, 0, 0));
+  const SE3Splined spline(0.0, 1.0, control_points);
+  const std::array<double, 4> b = uniformCubicBasis(0.3);
+  EXPECT_NEAR(spline.pose(0.3).t.x(), b[1] * 1.0 + b[2] * 5.0 + b[3] * 2.0, 1e-12);
+}
+
 TEST(Se3Spline, ReproducesConstantTwistMotionExactly) {
   const SE3Splined spline = constantTwistSpline(12);
   const Vector6d xi = constantTwist();

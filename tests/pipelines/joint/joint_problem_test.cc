@@ -251,6 +251,76 @@ TEST(JointProblem, TooFewTiePointsLeavesTheStartInPlaceWithAWarning) {
             "only 5 usable cross-modal tie points (need 20): the joint problem is not solved");
 }
 
+TEST(JointProblem, TheSplinePastTheLastPosedFrameIsHeldByTheSmoothnessNotByAnInsFix) {
+  // The spline's last segment reaches past the last posed frame (the knots
+  // need not divide the frames' span): its last control point moves the
+  // poses there by at most u^3/6 of itself, so the frames hardly hold it,
+  // and an INS fix there (1 Hz, decimetres of noise) took it, and the scan
+  // lines posed there, wherever its error pointed. With the smoothness
+  // prior on the accelerations tying it to its neighbours, the fix weighs
+  // as that prior and its own sigma say: solved with the fix 2 sigma off and
+  // with it exact, the spline at the fix moves by a fraction of the offset.
+  const ReducedSurvey survey = makeSurvey(6);
+  JointInputs inputs = inputsOf(survey);
+  const test::Transect& t = survey.transect;
+  // A spline through the first 7.5 s of frames, knots every 0.35 s: valid
+  // to 7.7 s (the truth is known to 8 s).
+  std::vector<TimedPose> frames;
+  for (std::size_t k = 0; k < t.keyframe_times.size() && t.keyframe_times[k] <= 7.5; ++k) {
+    frames.push_back({t.keyframe_times[k], t.start_T_W_C[k]});
+  }
+  const double dt = 0.35;
+  inputs.spline = splineThroughPoses(frames, dt);
+  const double end = inputs.spline.validEnd();
+  ASSERT_GT(end - frames.back().t, 0.1);  // a segment partly past the frames
+  ASSERT_LT(end, t.truth_spline.validEnd());
+  // The frames of the last segment's first 0.13 s are posed (three, at
+  // u < 0.4: together less than 1 % of a frame's weight on the last
+  // control point), and the tie points up to them (their prediction is
+  // made from the frames); an INS fix near the segment's end.
+  FrontendResult frontend = survey.frontend;
+  const double last_posed = end - dt + 0.13;
+  for (FrameRecord& frame : frontend.frames) frame.posed = frame.t <= last_posed;
+  inputs.frontend = &frontend;
+  inputs.tie_points.clear();
+  for (const JointTiePoint& tie : survey.ties) {
+    if (tie.t_recorded + inputs.time_offset_start_s <= last_posed) inputs.tie_points.push_back(tie);
+  }
+  const double t_fix = end - 0.01;
+  const SE3d T_W_B_fix = t.truth_spline.pose(t_fix) * t.T_B_C.inverse();
+  // 2 sigma of the reduced survey's 5 cm fixes.
+  const Eigen::Vector3d offset = Eigen::Vector3d(0.06, -0.05, 0.05);
+  auto solveWithLastFixOff = [&](const Eigen::Vector3d& fix_error, const JointOptions& options) {
+    std::vector<InsBodyFix> fixes;
+    for (const InsBodyFix& fix : survey.ins->fixes()) {
+      if (fix.t < t_fix) fixes.push_back(fix);
+    }
+    fixes.push_back({t_fix, T_W_B_fix.t + fix_error, T_W_B_fix.q, 0});
+    const InsBodyTrack ins(std::move(fixes), true);
+    inputs.ins = &ins;
+    return solveJointProblem(inputs, options);
+  };
+  // How far the fix's offset moves the spline at time `at`, as a fraction of it.
+  auto pulledAt = [&](double at, const JointOptions& options) {
+    const JointResult exact = solveWithLastFixOff(Eigen::Vector3d::Zero(), options);
+    const JointResult off = solveWithLastFixOff(offset, options);
+    EXPECT_TRUE(exact.solved && off.solved) << off.summary();
+    return (off.spline.pose(at).t - exact.spline.pose(at).t).norm() / offset.norm();
+  };
+  // With the prior there, the fix weighs at most as the acceleration prior
+  // alone lets it: 0.5 m/s^2 over the 0.2 s past the last frame allow 1 cm
+  // (0.5 a t^2), against the fix's 5 cm: (1^2 / (1^2 + 5^2)) ~ 0.04 of its
+  // offset, about twice that with the frames' own uncertainty at their end;
+  // this survey: 0.09. The frames' count alone leaves the last control
+  // point free (its support holds three frames): 0.39.
+  JointOptions count_only = testOptions();
+  count_only.min_frame_weight_in_support = 0.0;
+  EXPECT_GT(pulledAt(t_fix, count_only), 0.3);
+  EXPECT_LT(pulledAt(t_fix, testOptions()), 0.15);
+  // Up to the last posed frame the frames hold it.
+  EXPECT_LT(pulledAt(last_posed, testOptions()), 0.03);
+}
+
 // The reduced survey's inputs with d's start (and prior) 150 ms off, its
 // prior sigma 200 ms.
 JointInputs inputsStarting150msOff(const ReducedSurvey& survey) {
