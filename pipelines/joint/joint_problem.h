@@ -70,7 +70,10 @@ namespace hsmap {
 struct JointOptions {
   double pixel_sigma_px = 1.0;  // a keyframe's observations
   // The other posed frames' observations: sigma = pixel_sigma_px times this.
-  double other_frame_sigma_factor = 5.0;
+  // Their pixels share each track's accumulated drift: at 5 they still
+  // stretched the transect's along-track drift by a tenth; at 10 the
+  // trajectory keeps the keyframe adjustment's shape (docs/JOINT.md, "Weights").
+  double other_frame_sigma_factor = 10.0;
   double huber_sigmas = 2.0;
   // An observation farther than this from its landmark's projection at the
   // start is left out (it was an outlier of the front-end's PnP).
