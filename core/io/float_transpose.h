@@ -15,4 +15,11 @@ namespace hsmap {
 void transposeFloats(const float* src, std::size_t rows, std::size_t cols, std::size_t src_stride, float* dst,
                      std::size_t dst_stride);
 
+// The same with source row r multiplied by row_scale[r] (rows values):
+//   dst[c * dst_stride + r] = src[r * src_stride + c] * row_scale[r],
+// bit for bit what scaling the rows first and transposing after gives.
+// For sums turned into means as they are transposed (one pass, not two).
+void transposeScaledRows(const float* src, std::size_t rows, std::size_t cols, std::size_t src_stride,
+                         const float* row_scale, float* dst, std::size_t dst_stride);
+
 }  // namespace hsmap

@@ -27,5 +27,25 @@ TEST(FloatTranspose, MatchesTheDefinitionForEveryShape) {
   }
 }
 
+// Each source row scaled on the way: the bits of scaling, then transposing.
+TEST(FloatTranspose, ScaledRowsEqualScalingEachRowThenTransposing) {
+  for (std::size_t rows : {1, 3, 4, 5, 9, 23}) {
+    for (std::size_t cols : {1, 4, 7, 16, 17, 211}) {
+      const std::size_t src_stride = cols + 1, dst_stride = rows + 2;
+      std::vector<float> src(rows * src_stride), scale(rows);
+      for (std::size_t i = 0; i < src.size(); ++i) src[i] = static_cast<float>(i) * 0.37f + 0.1f;
+      for (std::size_t r = 0; r < rows; ++r) scale[r] = 1.0f / static_cast<float>(r + 3);
+      std::vector<float> dst(cols * dst_stride, -1.0f);
+      transposeScaledRows(src.data(), rows, cols, src_stride, scale.data(), dst.data(), dst_stride);
+      for (std::size_t c = 0; c < cols; ++c) {
+        for (std::size_t r = 0; r < dst_stride; ++r) {
+          const float expected = r < rows ? src[r * src_stride + c] * scale[r] : -1.0f;
+          ASSERT_EQ(dst[c * dst_stride + r], expected) << rows << "x" << cols << " at (" << c << ", " << r << ")";
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hsmap
