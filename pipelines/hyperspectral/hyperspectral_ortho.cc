@@ -450,7 +450,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
           const float* in = slot.sample_major[k].data();
           std::uint8_t* non_finite = slot.non_finite[k].data();
           std::uint8_t* ignored = slot.ignored[k].data();
-          markInvalidSamples(in, bands, samples, ignore, non_finite, ignored);
+          markInvalidSamples(in, bands, samples, cube.header().data_type, ignore, non_finite, ignored);
           const ScanLineHits& line = slot.hits[k];
           for (int s = 0; s < samples; ++s) {
             std::uint8_t& st = slot.status[k][std::size_t(s)];

@@ -8,21 +8,27 @@
 
 namespace hsmap {
 
-void markInvalidSamples(const float* pixel_major, int bands, int samples, std::optional<float> ignore,
-                        std::uint8_t* non_finite, std::uint8_t* ignored) {
+void markInvalidSamples(const float* pixel_major, int bands, int samples, EnviDataType stored,
+                        std::optional<float> ignore, std::uint8_t* non_finite, std::uint8_t* ignored) {
   constexpr float kMax = std::numeric_limits<float>::max();
+  const bool can_be_non_finite = stored == EnviDataType::float32 || stored == EnviDataType::float64;
+  std::fill(non_finite, non_finite + samples, std::uint8_t(0));
+  std::fill(ignored, ignored + samples, std::uint8_t(0));
+  if (!can_be_non_finite && !ignore) return;
   for (int s = 0; s < samples; ++s) {
     const float* spectrum = pixel_major + std::size_t(s) * std::size_t(bands);
     // Reductions without early exit, so the loops vectorise.
-    bool bad = false;
-    for (int b = 0; b < bands; ++b) bad |= !(std::fabs(spectrum[b]) <= kMax);
-    bool skip = false;
+    if (can_be_non_finite) {
+      bool bad = false;
+      for (int b = 0; b < bands; ++b) bad |= !(std::fabs(spectrum[b]) <= kMax);
+      non_finite[s] = std::uint8_t(bad);
+    }
     if (ignore) {
       const float value = *ignore;
+      bool skip = false;
       for (int b = 0; b < bands; ++b) skip |= spectrum[b] == value;
+      ignored[s] = std::uint8_t(skip);
     }
-    non_finite[s] = std::uint8_t(bad);
-    ignored[s] = std::uint8_t(skip);
   }
 }
 

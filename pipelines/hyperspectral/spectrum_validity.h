@@ -15,10 +15,12 @@
 namespace hsmap {
 
 // `pixel_major`: one line as EnviReader::readLinePixelMajor gives it, samples
-// x bands (each sample's spectrum contiguous). Writes one flag per sample
-// into non_finite and ignored (1 = yes).
-void markInvalidSamples(const float* pixel_major, int bands, int samples, std::optional<float> ignore,
-                        std::uint8_t* non_finite, std::uint8_t* ignored);
+// x bands (each sample's spectrum contiguous), decoded from a cube of data
+// type `stored` (an integer type holds no NaN or infinity, so its values
+// are not scanned for them: with no ignore value either, nothing is read).
+// Writes one flag per sample into non_finite and ignored (1 = yes).
+void markInvalidSamples(const float* pixel_major, int bands, int samples, EnviDataType stored,
+                        std::optional<float> ignore, std::uint8_t* non_finite, std::uint8_t* ignored);
 
 // The inputs every product cast from the cube needs to agree on: one
 // wavelength per band and the UHI camera's samples equal to the cube's.

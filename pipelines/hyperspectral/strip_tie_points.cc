@@ -291,7 +291,7 @@ StripTiePoints findStripTiePoints(const StripTiePointInputs& in, const StripTieP
     for (int j = 0; j < count; ++j) {
       const int i = first + j;
       cube.readLinePixelMajor(int(in.lines[std::size_t(i)].line), pixel_major.data());
-      markInvalidSamples(pixel_major.data(), bands, samples, ignore, non_finite.data(),
+      markInvalidSamples(pixel_major.data(), bands, samples, cube.header().data_type, ignore, non_finite.data(),
                          ignored.data());
       realStripRow(pixel_major.data(), non_finite.data(), ignored.data(), bands, step, used_bands,
                    in.band_weights, in.band_offset, cols, real.ptr<float>(i));
