@@ -336,6 +336,7 @@ HyperspectralReport writeHyperspectralOrtho(const EnviReader& cube,
                          " pixels of " + fixedDecimals(grid.pixel_m * 1000.0, 1) + " mm, " + std::to_string(bands) +
                          " bands; a larger --ortho-pixel shrinks it by its square)");
   }
+  if (options.on_grid) options.on_grid(grid);
   report.ortho_hdr = out_folder / "ortho.hdr";
   report.ancillary_hdr = out_folder / "ancillary.hdr";
   {

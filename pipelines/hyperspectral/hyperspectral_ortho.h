@@ -75,6 +75,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -122,6 +123,10 @@ struct HyperspectralOptions {
   int quicklook_max_side = 8192;
   // The UHI camera; default: the survey's uhi.camera (writeHyperspectralProducts).
   std::optional<PushbroomParameters> camera;
+  // Called once the ortho grid is set, before the first tile: a caller can
+  // start a product on the same grid (the RGB ortho-image) alongside the
+  // tiles, whose pace is the disk's while the cores have time to spare.
+  std::function<void(const OrthoGrid&)> on_grid;
 
   // std::invalid_argument naming the field and what is allowed.
   void validate() const;

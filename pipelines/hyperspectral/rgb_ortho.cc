@@ -291,7 +291,27 @@ std::string RgbOrthoReport::summary() const {
 
 RgbOrthoRenderer::RgbOrthoRenderer(const PlyMesh& mesh, const OrthoGrid& grid,
                                    const UtmProjection& projection, double margin_m)
-    : grid_(grid), colors_(mesh.colors), caster_(mesh.vertices, mesh.triangles) {
+    : grid_(grid),
+      colors_(mesh.colors),
+      own_caster_(std::make_unique<MeshRayCaster>(mesh.vertices, mesh.triangles)),
+      caster_(own_caster_.get()) {
+  setUp(mesh, projection, margin_m);
+}
+
+RgbOrthoRenderer::RgbOrthoRenderer(const PlyMesh& mesh, const MeshRayCaster& caster, const OrthoGrid& grid,
+                                   const UtmProjection& projection, double margin_m)
+    : grid_(grid), colors_(mesh.colors), caster_(&caster) {
+  if (caster.vertices().size() != mesh.vertices.size() || caster.triangles().size() != mesh.triangles.size()) {
+    throw std::invalid_argument("RgbOrthoRenderer: the ray caster holds " + std::to_string(caster.vertices().size()) +
+                                " vertices and " + std::to_string(caster.triangles().size()) +
+                                " triangles, the mesh " + std::to_string(mesh.vertices.size()) + " and " +
+                                std::to_string(mesh.triangles.size()));
+  }
+  setUp(mesh, projection, margin_m);
+}
+
+void RgbOrthoRenderer::setUp(const PlyMesh& mesh, const UtmProjection& projection, double margin_m) {
+  const OrthoGrid& grid = grid_;
   if (mesh.colors.size() != mesh.vertices.size()) {
     throw std::invalid_argument("RgbOrthoRenderer: the mesh needs one colour per vertex, got " +
                                 std::to_string(mesh.colors.size()) + " colours for " +
@@ -308,7 +328,7 @@ RgbOrthoRenderer::RgbOrthoRenderer(const PlyMesh& mesh, const OrthoGrid& grid,
   if (!(margin_m > 0.0) || !std::isfinite(margin_m)) {
     throw std::invalid_argument("RgbOrthoRenderer: the margin must be > 0 m");
   }
-  const Eigen::AlignedBox3d box = caster_.bounds();
+  const Eigen::AlignedBox3d box = caster_->bounds();
   verticals_ = std::make_unique<Verticals>(grid, projection, box.min().z() - margin_m, box.max().z() + margin_m);
 }
 
@@ -348,7 +368,7 @@ void RgbOrthoRenderer::renderColours(int col0, int row0, int cols, int rows, cv:
 
 void RgbOrthoRenderer::renderInto(int col0, int row0, cv::Mat& bgra, Eigen::Vector3d* p_W) const {
   const int cols = bgra.cols;
-  const std::vector<Eigen::Vector3i>& triangles = caster_.triangles();
+  const std::vector<Eigen::Vector3i>& triangles = caster_->triangles();
   const Eigen::Vector3d no_point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // Rays and hits of one image row per thread, allocated once per call.
   struct RowBuffers {
@@ -365,7 +385,7 @@ void RgbOrthoRenderer::renderInto(int col0, int row0, cv::Mat& bgra, Eigen::Vect
     const std::vector<Ray>& rays = buffer.rays;
     for (int r = range.begin(); r < range.end(); ++r) {
       for (int c = 0; c < cols; ++c) buffer.rays[c] = verticals_->at(col0 + c, row0 + r);
-      caster_.intersect(std::span<const Ray>(rays), std::span<RayHit>(buffer.hits));
+      caster_->intersect(std::span<const Ray>(rays), std::span<RayHit>(buffer.hits));
       auto* out = bgra.ptr<cv::Vec4b>(r);
       Eigen::Vector3d* points = p_W != nullptr ? p_W + std::size_t(r) * cols : nullptr;
       for (int c = 0; c < cols; ++c) {
@@ -462,6 +482,18 @@ RgbOrthoReport writeRgbOrtho(const PlyMesh& mesh, const OrthoGrid& grid, const U
   options.validate();
   const Clock::time_point start = Clock::now();
   const RgbOrthoRenderer renderer(mesh, grid, projection, options.margin_m);
+  const double setup_seconds = secondsSince(start);
+  RgbOrthoReport report = writeRgbOrtho(renderer, out_folder, options);
+  report.setup_seconds = setup_seconds;
+  return report;
+}
+
+RgbOrthoReport writeRgbOrtho(const PlyMesh& mesh, const MeshRayCaster& caster, const OrthoGrid& grid,
+                             const UtmProjection& projection, const std::filesystem::path& out_folder,
+                             const RgbOrthoOptions& options) {
+  options.validate();
+  const Clock::time_point start = Clock::now();
+  const RgbOrthoRenderer renderer(mesh, caster, grid, projection, options.margin_m);
   const double setup_seconds = secondsSince(start);
   RgbOrthoReport report = writeRgbOrtho(renderer, out_folder, options);
   report.setup_seconds = setup_seconds;

@@ -350,7 +350,7 @@ void runJointStage(const Survey& survey, const FrontendResult& frontend, const G
                     HyperspectralOptions{}.geotiff);
     out << "joint: GeoTIFF written in " << secondsSince(start) << " s\n";
   }
-  if (cast) writeRgbOrthoProducts(ply, report.grid, projection, options, out);
+  if (cast) writeRgbOrthoProducts(ply, *mesh, report.grid, projection, options, out);
 }
 
 }  // namespace hsmap

@@ -2,8 +2,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <future>
 #include <optional>
 #include <ostream>
+#include <sstream>
+#include <string>
 
 #include "core/io/geotiff_export.h"
 #include "core/io/ply_io.h"
@@ -161,10 +165,12 @@ void writePointCloudProducts(const Survey& survey, const std::vector<LinePose>& 
 
 HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
                                  const MeshRayCaster& mesh, const UtmProjection& projection,
-                                 const RunOptions& options, bool geotiff, std::ostream& out, bool points) {
+                                 const RunOptions& options, bool geotiff, std::ostream& out, bool points,
+                                 std::function<void(const OrthoGrid&)> on_grid) {
   HyperspectralOptions products;
   products.pixel_m = options.ortho_pixel_m;
   products.write_geotiff = geotiff;
+  products.on_grid = std::move(on_grid);
   const HyperspectralReport report = writeHyperspectralOrtho(
       *survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera), line_poses, mesh,
       projection, options.out / "hyperspectral", products, out);
@@ -260,8 +266,8 @@ void refineExtrinsic(const Survey& survey, std::vector<LinePose> line_poses, con
 
 }  // namespace
 
-void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmProjection& projection,
-                           const RunOptions& options, std::ostream& out) {
+void writeRgbOrthoProducts(const PlyMesh& ply, const MeshRayCaster& mesh, const OrthoGrid& grid,
+                           const UtmProjection& projection, const RunOptions& options, std::ostream& out) {
   // The RGB ortho-image of the textured mesh on the same grid, to compare
   // side by side (and, with its 3D points, to match against).
   if (ply.colors.size() != ply.vertices.size()) {
@@ -271,7 +277,7 @@ void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmP
   }
   RgbOrthoOptions rgb;
   rgb.write_geotiff = options.geotiff;
-  const RgbOrthoReport rgb_report = writeRgbOrtho(ply, grid, projection, options.out / "map", rgb);
+  const RgbOrthoReport rgb_report = writeRgbOrtho(ply, mesh, grid, projection, options.out / "map", rgb);
   out << rgb_report.summary() << "\n";
   out << "wrote";
   for (const fs::path& path : {rgb_report.png, rgb_report.tif}) {
@@ -307,11 +313,23 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   out << "products: mesh read and its BVH built in "
       << std::chrono::duration<double>(std::chrono::steady_clock::now() - mesh_start).count() << " s ("
       << ply.triangles.size() << " triangles)\n";
+  // Without a refinement this cast is the last: the RGB ortho-image (on its
+  // grid) is rendered alongside its tiles, which wait on the disk, and its
+  // log follows the cast's.
+  std::future<std::string> rgb_ortho;
+  auto startRgbOrtho = [&](const OrthoGrid& grid) {
+    rgb_ortho = std::async(std::launch::async, [&, grid] {
+      std::ostringstream log;
+      writeRgbOrthoProducts(ply, mesh, grid, projection, options, log);
+      return log.str();
+    });
+  };
   // The point cloud from the final line poses: after the refinement's last
   // cast when one follows (the joint stage writes it again each round).
   HyperspectralReport report =
       castProducts(survey, line_poses, mesh, projection, options,
-                   options.geotiff && !refine && !joint_follows, out, !refine);
+                   options.geotiff && !refine && !joint_follows, out, !refine,
+                   refine ? std::function<void(const OrthoGrid&)>{} : startRgbOrtho);
   if (refine) {
     refineExtrinsic(survey, line_poses, mesh, projection, options, report, out);
     if (options.geotiff) {
@@ -329,7 +347,11 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
   if (options.points) out << ", " << (options.out / "hyperspectral/points.ply").string();
   out << "\n";
 
-  writeRgbOrthoProducts(ply, report.grid, projection, options, out);
+  if (rgb_ortho.valid()) {
+    out << rgb_ortho.get();
+  } else {
+    writeRgbOrthoProducts(ply, mesh, report.grid, projection, options, out);
+  }
 }
 
 }  // namespace hsmap

@@ -14,6 +14,7 @@
 //              the run folder, so `--from products` reruns it alone.
 //   joint      the joint problem (pipelines/joint) in rounds, each re-casting
 //              the products: joint_stage.h (docs/JOINT.md).
+#include <functional>
 #include <iosfwd>
 #include <optional>
 
@@ -42,17 +43,19 @@ void runProductsStage(const Survey& survey, const RunOptions& options, std::ostr
 // Shared by the products and joint stages.
 // One cast of every scan line onto the mesh: the hyperspectral products in
 // RUN/hyperspectral (the GeoTIFF only when `geotiff`; the point cloud
-// points.ply when `points` and options.points).
+// points.ply when `points` and options.points). `on_grid` as
+// HyperspectralOptions::on_grid.
 HyperspectralReport castProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
                                  const MeshRayCaster& mesh, const UtmProjection& projection,
                                  const RunOptions& options, bool geotiff, std::ostream& out,
-                                 bool points = true);
+                                 bool points = true, std::function<void(const OrthoGrid&)> on_grid = {});
 // RUN/hyperspectral/points.ply from these line poses (nothing when
 // options.points is false).
 void writePointCloudProducts(const Survey& survey, const std::vector<LinePose>& line_poses,
                              const MeshRayCaster& mesh, const RunOptions& options, std::ostream& out);
-// RUN/map/rgb_ortho.png (+ .tif): the textured mesh on the ortho grid.
-void writeRgbOrthoProducts(const PlyMesh& ply, const OrthoGrid& grid, const UtmProjection& projection,
-                           const RunOptions& options, std::ostream& out);
+// RUN/map/rgb_ortho.png (+ .tif): the textured mesh on the ortho grid, cast
+// through `mesh` (built from `ply`).
+void writeRgbOrthoProducts(const PlyMesh& ply, const MeshRayCaster& mesh, const OrthoGrid& grid,
+                           const UtmProjection& projection, const RunOptions& options, std::ostream& out);
 
 }  // namespace hsmap

@@ -177,9 +177,19 @@ TEST_F(HyperspectralOrthoTest, SmallTilesGiveTheSameImage) {
   options.tile_memory_mb = 1.0;  // ~20 rows a tile: many tiles
   options.write_geotiff = false;
   options.lines_per_batch = 7;
+  // The grid is announced once, before the first tile is written.
+  std::vector<OrthoGrid> announced;
+  options.on_grid = [&](const OrthoGrid& grid) {
+    EXPECT_FALSE(std::filesystem::exists(out / "ortho.raw.partial"));
+    announced.push_back(grid);
+  };
   std::ostringstream log;
   const HyperspectralReport tiled = writeHyperspectralProducts(
       run().survey, tinyProductsSurvey().true_line_poses, tinyProductsSurvey().scene_ply, out.path(), options, log);
+  ASSERT_EQ(announced.size(), 1u);
+  EXPECT_EQ(announced[0].cols, tiled.grid.cols);
+  EXPECT_EQ(announced[0].rows, tiled.grid.rows);
+  EXPECT_EQ(announced[0].mapInfo(), tiled.grid.mapInfo());
   EXPECT_GT(tiled.tiles, 5);
   EXPECT_EQ(tiled.painted, run().report.painted);
   EXPECT_EQ(tiled.filled_pixels, run().report.filled_pixels);

@@ -208,6 +208,26 @@ TEST(RgbOrtho, WindowEqualsThatPartOfTheWholeGrid) {
   EXPECT_THROW(renderer.render(-1, 0, 2, 1), std::invalid_argument);
 }
 
+// A renderer casting through a caster built apart (the products stage's)
+// renders the same as one building its own; a caster of another mesh is refused.
+TEST(RgbOrtho, ASharedCasterRendersAsTheRenderersOwnAndMustHoldTheMesh) {
+  const UtmProjection projection(kOrigin);
+  PlyMesh mesh;
+  addQuad(mesh, -1.0, 1.0, -1.0, 1.0, [](double n, double e) { return 1.0 + 0.2 * n * e; },
+          [](double n, double e) { return Rgb(std::uint8_t(120 + 60 * n), 9, std::uint8_t(120 + 60 * e)); });
+  const OrthoGrid grid = gridAround(projection, -1.0, 1.0, -1.0, 1.0, 0.1, 0.02);
+  const RgbOrthoPatch own = RgbOrthoRenderer(mesh, grid, projection).render(0, 0, grid.cols, grid.rows);
+  const MeshRayCaster caster(mesh.vertices, mesh.triangles);
+  const RgbOrthoPatch shared = RgbOrthoRenderer(mesh, caster, grid, projection).render(0, 0, grid.cols, grid.rows);
+  EXPECT_EQ(cv::norm(own.bgra, shared.bgra, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::countNonZero(own.bgra.reshape(1) != 0), 0);
+
+  PlyMesh larger = mesh;
+  addQuad(larger, 2.0, 3.0, 2.0, 3.0, [](double, double) { return 1.0; }, [](double, double) { return Rgb(1, 1, 1); });
+  const MeshRayCaster other(larger.vertices, larger.triangles);
+  EXPECT_THROW(RgbOrthoRenderer(mesh, other, grid, projection), std::invalid_argument);
+}
+
 struct GdalCloser {
   void operator()(GDALDatasetH dataset) const { GDALClose(dataset); }
 };
