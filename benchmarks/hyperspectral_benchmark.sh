@@ -13,7 +13,9 @@
 # ortho-image's size on disk and the disk's write speed in the same repeat
 # (the cube, in the page cache after the cat, copied with dd oflag=direct to
 # a file beside the run and deleted; the ortho-image is written the same
-# way, so its size over this speed is the stage's floor on this disk).
+# way, so its size over this speed is the stage's floor on this disk), that
+# floor over the cat's time (the lowest stage / cat the disk allows) and the
+# stage's time over the floor (1: the stage runs at the disk's write speed).
 # The stage's own report (HyperspectralReport::summary, with the time of
 # each step) is in RUN.products.log.
 #
@@ -41,8 +43,8 @@ read -r -a products_args <<<"${PRODUCTS_ARGS:-}"
 
 seconds_now() { date +%s.%N; }
 
-echo "| survey | repeat | scan lines | products stage (s) | lines/s | mesh + cast + ortho (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) | disk write (GB/s) | ortho.raw at that speed (s) |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| survey | repeat | scan lines | products stage (s) | lines/s | mesh + cast + ortho (s) | lines/s | cat cube.raw (s) | stage / cat | peak RSS (MB) | ortho.raw (GB) | disk write (GB/s) | ortho.raw at that speed (s) | that / cat | stage / that |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for survey in "${surveys[@]}"; do
   name=$(basename "$survey")
   run="$work/hsmap_products_$name"
@@ -88,9 +90,10 @@ for survey in "${surveys[@]}"; do
     ortho_bytes=$(stat -c %s "$run/hyperspectral/ortho.raw" 2>/dev/null || echo 0)
     awk -v survey="$name" -v repeat="$repeat" -v lines="${lines:-0}" -v stage="$stage_s" -v cast_ortho="${cast_ortho_s:-0}" -v cat_s="$cat_s" \
         -v peak="$peak_kb" -v bytes="$ortho_bytes" -v write_gb_s="$write_gb_s" 'BEGIN {
-      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f | %.2f | %.1f |\n", survey, repeat,
+      floor_s = (write_gb_s > 0 ? bytes / 1e9 / write_gb_s : 0)
+      printf "| %s | %d | %d | %.1f | %.0f | %.1f | %.0f | %.1f | %.2f | %.0f | %.2f | %.2f | %.1f | %.2f | %.2f |\n", survey, repeat,
              lines, stage, (stage > 0 ? lines / stage : 0), cast_ortho, (cast_ortho > 0 ? lines / cast_ortho : 0),
-             cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9, write_gb_s,
-             (write_gb_s > 0 ? bytes / 1e9 / write_gb_s : 0) }'
+             cat_s, (cat_s > 0 ? stage / cat_s : 0), peak / 1024, bytes / 1e9, write_gb_s, floor_s,
+             (cat_s > 0 ? floor_s / cat_s : 0), (floor_s > 0 ? stage / floor_s : 0) }'
   done
 done
