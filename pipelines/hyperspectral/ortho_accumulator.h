@@ -107,7 +107,9 @@ class OrthoTileAccumulator {
   // Whether a pixel position lies in the owned rows.
   bool owns(const Eigen::Vector2d& col_row) const;
 
-  // Means and gap filling (see above). Call once, after the last add().
+  // Gap filling (see above). Call once, after the last add(). The sums stay
+  // sums: an observed pixel's mean (sum / count) is taken where it is read,
+  // by the filling and by spectraRow(), which saves a pass over them all.
   void finish(int fill_radius_px);
 
   // After finish(): owned row `row` band-major, out[b * cols + c] (bands x
