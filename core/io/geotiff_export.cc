@@ -95,10 +95,6 @@ const EnviMapInfo& requireUtmMapInfo(const EnviHeader& header, const std::filesy
   return info;
 }
 
-void registerGdalOnce() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
 
 // While alive, GDAL's errors on this thread are collected instead of printed
 // (CPLPushErrorHandlerEx is per thread), and GDAL writes no .aux.xml side
@@ -295,7 +291,7 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
   // NaN (what hsmap writes) reads as none: float data get NaN nodata below.
   const std::optional<float> ignore_value = enviDataIgnoreValue(header, envi_header);
 
-  registerGdalOnce();
+  registerGdalDrivers();
   GdalErrorCapture errors;
 
   // GDAL's ENVI driver opens the data file (it refuses the .hdr) and finds the
@@ -459,6 +455,11 @@ void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesy
   source_for_copy.reset();
   removeGdalLeftovers(file.partialPath());
   file.commit();
+}
+
+void registerGdalDrivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
 }
 
 }  // namespace hsmap

@@ -109,4 +109,11 @@ struct GeoTiffExportOptions {
 void exportEnviToCog(const std::filesystem::path& envi_header, const std::filesystem::path& tif_path,
                      const GeoTiffExportOptions& options = {});
 
+// GDAL's drivers, registered once per process by whichever thread asks
+// first: every writer in hsmap calls this rather than GDALAllRegister, which
+// must not run on two threads at once (the products stage writes the RGB
+// ortho-image's GeoTIFF on one thread while exporting the hyperspectral one
+// may start on another).
+void registerGdalDrivers();
+
 }  // namespace hsmap

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <optional>
 #include <span>
 #include <sstream>
@@ -25,6 +24,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/io/atomic_file.h"
+#include "core/io/geotiff_export.h"
 #include "core/util/stage_timer.h"
 
 namespace hsmap {
@@ -43,11 +43,6 @@ std::string upper(std::string text) {
 }
 
 // ---- GeoTIFF through GDAL ---------------------------------------------------
-
-void registerGdalOnce() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
 
 // While alive, GDAL's failures on this thread are collected instead of
 // printed, and GDAL writes no .aux.xml side file (it would follow the
@@ -87,7 +82,7 @@ class RgbGeoTiff {
  public:
   RgbGeoTiff(const std::filesystem::path& path, const OrthoGrid& grid, const RgbOrthoOptions& options)
       : path_(path), grid_(grid), options_(options) {
-    registerGdalOnce();
+    registerGdalDrivers();
     GDALDriverH driver = GDALGetDriverByName("GTiff");
     if (driver == nullptr) fail("GDAL has no GTiff driver");
     const std::string compression = upper(options.geotiff_compression);
