@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/io/float_transpose.h"
+#include "pipelines/hyperspectral/weighted_spectrum_sum.h"
 
 namespace hsmap {
 
@@ -175,8 +176,9 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
   // read a state_ nobody writes (sources are tested by state_ == kObserved).
   std::vector<std::uint8_t> filled_mark(state_.size(), 0);
   tbb::parallel_for(row_begin_, row_end_, [&](int row) {
-    std::vector<float> spectrum(static_cast<std::size_t>(bands_));
     std::vector<std::pair<std::size_t, float>> sources;
+    std::vector<const float*> source_spectra;
+    std::vector<float> source_weights, source_scales;
     std::int64_t filled = 0, observed = 0;
     // Columns within `radius` of an observed pixel of the rows in reach.
     int col_begin = cols_, col_end = -1;
@@ -218,14 +220,19 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
         }
       }
       if (!((left && right) || (up && down))) continue;
-      std::fill(spectrum.begin(), spectrum.end(), 0.0f);
+      source_spectra.clear();
+      source_weights.clear();
+      source_scales.clear();
       for (const auto& [j, weight] : sources) {
-        const float* source = &sums_[j * std::size_t(bands_)];
-        const float scale = 1.0f / float(counts_[j]);  // the source's mean: sum * scale
-        for (int b = 0; b < bands_; ++b) spectrum[std::size_t(b)] += weight * (source[b] * scale);
+        source_spectra.push_back(&sums_[j * std::size_t(bands_)]);
+        source_weights.push_back(weight);
+        source_scales.push_back(1.0f / float(counts_[j]));  // the source's mean: sum * scale
       }
+      // The target is empty, so none of its sources: its sums can take the mix.
       float* target = &sums_[i * std::size_t(bands_)];
-      for (int b = 0; b < bands_; ++b) target[b] = spectrum[std::size_t(b)] / weight_sum;
+      weightedSpectrumSum(source_spectra.data(), source_weights.data(), source_scales.data(),
+                          int(sources.size()), bands_, target);
+      for (int b = 0; b < bands_; ++b) target[b] /= weight_sum;
       filled_mark[i] = 1;
       ancillary_[i] = filledAncillary(sources, weight_sum, nearest);
       ++filled;
