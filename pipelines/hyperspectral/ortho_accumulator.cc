@@ -26,7 +26,7 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 void OrthoTileAccumulator::FreeDeleter::operator()(float* p) const { std::free(p); }
 
 std::int64_t OrthoTileAccumulator::bytesPerRow(int cols, int bands) {
-  return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 1 + 4 + 16);
+  return std::int64_t(cols) * (std::int64_t(bands) * 4 + 4 + 1 + 1 + 4 + 4 + 16);
 }
 
 OrthoTileAccumulator::OrthoTileAccumulator(const OrthoGrid& grid, int bands, int row_begin,
@@ -70,6 +70,7 @@ void OrthoTileAccumulator::reset(int row_begin, int row_end) {
   counts_.assign(pixels, 0);
   state_.assign(pixels, kEmpty);
   best_d2_.resize(pixels);
+  mean_scale_.resize(pixels);
   reach_px_.resize(pixels);
   ancillary_.resize(pixels);
 }
@@ -139,12 +140,15 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
   // Observed pixels (every accumulated row: the halo feeds the filling), and
   // each row's span of observed columns (to skip the empty grid beside the
   // swath). The sums stay sums: an observed pixel's mean is sum * (1 /
-  // count), taken where it is read (the filling, spectraRow), which saves a
-  // pass over all of them (~1 KB a pixel) and gives the same bits.
+  // count), taken where it is read (the filling, spectraRow) with the factor
+  // kept here, which saves a pass over all sums (~1 KB a pixel) and gives
+  // the same bits. Other pixels keep a factor of 1 (a filled pixel's sums
+  // are its value).
   std::vector<int> observed_first(std::size_t(rows), cols_), observed_last(std::size_t(rows), -1);
   tbb::parallel_for(0, rows, [&](int r) {
     for (int c = 0; c < cols_; ++c) {
       const std::size_t i = std::size_t(r) * cols_ + c;
+      mean_scale_[i] = counts_[i] == 0 ? 1.0f : 1.0f / float(counts_[i]);
       if (counts_[i] == 0) continue;
       state_[i] = kObserved;
       observed_first[std::size_t(r)] = std::min(observed_first[std::size_t(r)], c);
@@ -226,7 +230,7 @@ void OrthoTileAccumulator::finish(int fill_radius_px) {
       for (const auto& [j, weight] : sources) {
         source_spectra.push_back(&sums_[j * std::size_t(bands_)]);
         source_weights.push_back(weight);
-        source_scales.push_back(1.0f / float(counts_[j]));  // the source's mean: sum * scale
+        source_scales.push_back(mean_scale_[j]);
       }
       // The target is empty, so none of its sources: its sums can take the mix.
       float* target = &sums_[i * std::size_t(bands_)];
@@ -271,13 +275,9 @@ void OrthoTileAccumulator::spectraRow(int row, float* out) const {
     std::fill(band + end, band + cols_, kNaNf);
   }
   if (begin == end) return;
-  thread_local std::vector<float> scale;
-  scale.resize(std::size_t(end - begin));
-  for (int col = begin; col < end; ++col) {
-    scale[std::size_t(col - begin)] = state[col] == kObserved ? 1.0f / float(counts_[first + col]) : 1.0f;
-  }
   transposeScaledRows(&sums_[(first + begin) * std::size_t(bands_)], std::size_t(end - begin),
-                      std::size_t(bands_), std::size_t(bands_), scale.data(), out + begin, std::size_t(cols_));
+                      std::size_t(bands_), std::size_t(bands_), &mean_scale_[first + begin], out + begin,
+                      std::size_t(cols_));
   for (int col = begin; col < end; ++col) {
     if (state[col] != kEmpty) continue;
     for (int b = 0; b < bands_; ++b) out[std::size_t(b) * cols_ + col] = kNaNf;

@@ -44,7 +44,7 @@
 // line that reaches [row_begin - halo, row_end + halo) gets, for the owned
 // rows, exactly what one accumulator over the whole grid would give.
 //
-// Memory: bands * 4 + 26 bytes per pixel of (rows + 2 halo) x cols. The
+// Memory: bands * 4 + 30 bytes per pixel of (rows + 2 halo) x cols. The
 // sums (nearly all of it) are allocated once, uninitialised, in transparent
 // huge pages where the kernel allows (madvise): on the project's virtual
 // machine a 4 KB page fault costs ~30 us, so first touching 256 MB page by
@@ -143,6 +143,7 @@ class OrthoTileAccumulator {
   std::vector<std::uint32_t> counts_;
   std::vector<std::uint8_t> state_;
   std::vector<float> best_d2_;          // squared distance (px^2) of the nearest hit to the centre
+  std::vector<float> mean_scale_;       // after finish(): 1 / count where observed, else 1
   std::vector<std::uint8_t> reach_px_;  // largest reach of the pixel's hits (whole pixels)
   int max_reach_px_ = 0;                // over the tile's hits
   std::vector<Eigen::Vector4f> ancillary_;  // line, sample, range, incidence

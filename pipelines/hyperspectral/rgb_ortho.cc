@@ -474,12 +474,12 @@ RgbOrthoReport writeRgbOrtho(const RgbOrthoRenderer& renderer, const std::filesy
 
 RgbOrthoReport writeRgbOrtho(const PlyMesh& mesh, const OrthoGrid& grid, const UtmProjection& projection,
                              const std::filesystem::path& out_folder, const RgbOrthoOptions& options) {
-  options.validate();
+  options.validate();  // before the BVH is built
   const Clock::time_point start = Clock::now();
-  const RgbOrthoRenderer renderer(mesh, grid, projection, options.margin_m);
-  const double setup_seconds = secondsSince(start);
-  RgbOrthoReport report = writeRgbOrtho(renderer, out_folder, options);
-  report.setup_seconds = setup_seconds;
+  const MeshRayCaster caster(mesh.vertices, mesh.triangles);
+  const double bvh_seconds = secondsSince(start);
+  RgbOrthoReport report = writeRgbOrtho(mesh, caster, grid, projection, out_folder, options);
+  report.setup_seconds += bvh_seconds;
   return report;
 }
 
