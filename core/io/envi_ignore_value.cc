@@ -44,4 +44,10 @@ std::optional<float> enviDataIgnoreValue(const EnviHeader& header, const std::fi
   return std::nullopt;
 }
 
+void setDataIgnoreValueNaN(EnviHeader& header) {
+  std::erase_if(header.other_fields,
+                [](const auto& field) { return normalisedKey(field.first) == "data ignore value"; });
+  header.other_fields.emplace_back("data ignore value", "NaN");
+}
+
 }  // namespace hsmap

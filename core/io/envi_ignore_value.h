@@ -19,4 +19,10 @@ namespace hsmap {
 
 std::optional<float> enviDataIgnoreValue(const EnviHeader& header, const std::filesystem::path& hdr_path);
 
+// Declares NaN as the raster's `data ignore value` (replacing any value the
+// header had): what hsmap's float products write where nothing was seen.
+// GDAL's ENVI driver then reports NoData = NaN, as the GeoTIFF export
+// declares it, so a GIS shows those pixels as empty from either file.
+void setDataIgnoreValueNaN(EnviHeader& header);
+
 }  // namespace hsmap

@@ -64,9 +64,9 @@
 // max_fill_radius_px; not within max_fill_radius_px of the swath's sides),
 // so the fanned lines of a turn leave no stripes of NaN between them.
 //
-// The ENVI header carries no `data ignore value`: empty pixels are NaN, which
-// every float reader (GDAL, hsmap's evaluate) treats as empty, and the
-// COG's nodata is NaN (geotiff_export.h).
+// Empty pixels are NaN, and the ENVI headers say so: `data ignore value =
+// NaN` (product_headers.h), which GDAL reports as NoData, like the COG's
+// nodata (geotiff_export.h).
 //
 // Lines whose footprint reaches two tiles are cast and read once per tile
 // (only the lines near tile edges for a survey along north-south; for a

@@ -1,5 +1,7 @@
 #include "pipelines/hyperspectral/product_headers.h"
 
+#include "core/io/envi_ignore_value.h"
+
 namespace hsmap {
 
 EnviHeader spectralProductHeader(const EnviReader& cube, const std::vector<double>& wavelengths_nm, int rows,
@@ -22,6 +24,7 @@ EnviHeader spectralProductHeader(const EnviReader& cube, const std::vector<doubl
     }
   }
   header.band_names = in.band_names;
+  setDataIgnoreValueNaN(header);
   return header;
 }
 
@@ -33,6 +36,7 @@ EnviHeader ancillaryProductHeader(int rows, int cols) {
   header.data_type = EnviDataType::float32;
   header.interleave = EnviInterleave::bil;
   header.band_names = {"scan line", "sample", "range (m)", "incidence (deg)"};
+  setDataIgnoreValueNaN(header);
   return header;
 }
 

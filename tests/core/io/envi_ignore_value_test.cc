@@ -31,6 +31,23 @@ TEST(EnviDataIgnoreValue, NanMarksNothingMore) {
   EXPECT_FALSE(enviDataIgnoreValue(headerWith("data ignore value", "nan"), "a.hdr").has_value());
 }
 
+TEST(EnviDataIgnoreValue, NanIsWrittenOnceInPlaceOfAnyEarlierValueAndReadsBack) {
+  EnviHeader header = headerWith("Data  Ignore Value", "-9999");
+  header.samples = header.lines = header.bands = 1;
+  header.data_type = EnviDataType::float32;
+  setDataIgnoreValueNaN(header);
+  setDataIgnoreValueNaN(header);
+  const std::string text = formatEnviHeader(header);
+  EXPECT_NE(text.find("\ndata ignore value = NaN\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("9999"), std::string::npos) << text;
+  const EnviHeader back = parseEnviHeader(text, "a.hdr");
+  int ignore_keys = 0;
+  for (const auto& [key, value] : back.other_fields) ignore_keys += key == "data ignore value";
+  EXPECT_EQ(ignore_keys, 1);
+  EXPECT_FALSE(enviDataIgnoreValue(back, "a.hdr").has_value());
+  EXPECT_EQ(back.other_fields.front(), (std::pair<std::string, std::string>{"description of something else", "x"}));
+}
+
 TEST(EnviDataIgnoreValue, AnythingElseIsAnErrorNamingTheHeaderAndKey) {
   for (const std::string bad : {"none", "", "1.5x", "inf", "{}"}) {
     try {

@@ -2,7 +2,7 @@
 // user gets from the hyperspectral stage: the ENVI ortho-image (ortho.raw with
 // ortho.hdr beside it) and its GeoTIFF (exportEnviToCog). The ortho is
 // written as hsmap writes it: ENVI float32 BIL, `map info` in UTM on WGS-84,
-// wavelengths in nm, NaN where nothing was seen, no `data ignore value`.
+// wavelengths in nm, NaN where nothing was seen and `data ignore value = NaN`.
 //
 // gdalinfo comes with Debian's gdal-bin, which scripts/setup.sh installs; its
 // absence is a failure, not a skip.
@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include "core/io/envi_header.h"
+#include "core/io/envi_ignore_value.h"
 #include "core/io/envi_writer.h"
 #include "core/io/geotiff_export.h"
 #include "tests/support/temp_folder.h"
@@ -68,6 +69,7 @@ std::filesystem::path writeOrtho(const TempFolder& dir, int zone, bool north) {
   map.units = "Meters";
   header.map_info = map;
   header.description = "hsmap products: hyperspectral ortho-image, NaN where nothing was seen";
+  setDataIgnoreValueNaN(header);
   EnviWriter writer(dir / "ortho.hdr", header);
   std::vector<float> line(static_cast<std::size_t>(kSamples) * kBands);
   for (int l = 0; l < kLines; ++l) {
@@ -193,6 +195,9 @@ TEST_P(GdalinfoReadsOrtho, EnviDataFileAndGeoTiff) {
     EXPECT_NE(wkt.find("CONVERSION[\"" + zone_name + "\""), std::string::npos) << wkt;
     EXPECT_NE(wkt.find("BASEGEOGCRS[\"WGS 84\""), std::string::npos) << wkt;
     EXPECT_NE(wkt.find("DATUM[\"World Geodetic System 1984\""), std::string::npos) << wkt;
+    const CPLJSONArray bands = envi.GetArray("bands");
+    ASSERT_EQ(bands.Size(), kBands);
+    for (int b = 0; b < kBands; ++b) EXPECT_EQ(bands[b].GetString("noDataValue"), "NaN") << "band " << b + 1;
   }
   {
     SCOPED_TRACE("ortho.tif");

@@ -73,6 +73,11 @@ TEST_F(HyperspectralOrthoTest, WritesEveryProductWithUtmMapInfoAndWavelengths) {
   const EnviReader ancillary(report.ancillary_hdr);
   EXPECT_EQ(ancillary.bands(), 4);
   EXPECT_EQ(ancillary.header().map_info, ortho.header().map_info);
+  // Empty pixels are NaN, and both headers declare it for GIS readers.
+  const std::pair<std::string, std::string> nan_ignore{"data ignore value", "NaN"};
+  EXPECT_EQ(std::count(ortho.header().other_fields.begin(), ortho.header().other_fields.end(), nan_ignore), 1);
+  EXPECT_EQ(std::count(ancillary.header().other_fields.begin(), ancillary.header().other_fields.end(), nan_ignore),
+            1);
 }
 
 TEST_F(HyperspectralOrthoTest, CountsAddUp) {

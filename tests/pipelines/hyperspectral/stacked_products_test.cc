@@ -67,6 +67,9 @@ TEST(StackedProducts, AreTheLinesSideBySideWithInvalidSpectraNaNAndNoMapPosition
   EXPECT_EQ(ortho.bands(), kBands);
   EXPECT_FALSE(ortho.header().map_info.has_value());
   EXPECT_EQ(ortho.header().wavelength, (std::vector<double>{450, 500, 550, 600, 650}));
+  // The cube's ignore value (-1) is not the product's: its invalid spectra are NaN.
+  const std::pair<std::string, std::string> nan_ignore{"data ignore value", "NaN"};
+  EXPECT_EQ(ortho.header().other_fields, (std::vector<std::pair<std::string, std::string>>{nan_ignore}));
   std::vector<float> line(std::size_t(kBands) * kSamples);
   for (int l = 0; l < kLines; ++l) {
     ortho.readLine(l, line.data());
