@@ -63,13 +63,19 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
   problem_ = std::make_unique<ceres::Problem>(problem_options);
 
   variables_ = graph_.keys();
+  std::size_t total = 0;
+  for (const Key& key : variables_) {
+    block_offset_[key] = total;
+    total += std::size_t(values_.size(key));
+  }
+  blocks_.resize(total);
+  loadValues();
   for (const Key& key : variables_) {
     const bool is_pose = values_.type(key) == ValueType::pose3;
-    problem_->AddParameterBlock(values_.data(key), values_.size(key),
-                                is_pose ? se3_manifold_.get() : nullptr);
+    problem_->AddParameterBlock(block(key), values_.size(key), is_pose ? se3_manifold_.get() : nullptr);
     if (isConstant(key)) {
       ++num_constant_variables_;
-      problem_->SetParameterBlockConstant(values_.data(key));
+      problem_->SetParameterBlockConstant(block(key));
     } else {
       num_free_parameters_ += values_.tangentSize(key);
     }
@@ -101,7 +107,7 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
              keys[k].toString() + ", but Values holds a " + toString(values_.type(keys[k])) +
              " of " + doubles(values_.size(keys[k])));
       }
-      blocks.push_back(values_.data(keys[k]));
+      blocks.push_back(block(keys[k]));
     }
     if (raw->num_residuals() != factor.noise().dimension()) {
       fail(describeFactor(graph_, index) + " returns " + std::to_string(raw->num_residuals()) +
@@ -154,8 +160,8 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
               << " lies outside [" << bound.lower << ", " << bound.upper << "]";
       fail(message.str());
     }
-    problem_->SetParameterLowerBound(values_.data(bound.key), bound.index, bound.lower);
-    problem_->SetParameterUpperBound(values_.data(bound.key), bound.index, bound.upper);
+    problem_->SetParameterLowerBound(block(bound.key), bound.index, bound.lower);
+    problem_->SetParameterUpperBound(block(bound.key), bound.index, bound.upper);
   }
 
   // Greedy independent set of the free landmarks, in key order.
@@ -177,17 +183,41 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
 
 GraphProblem::~GraphProblem() = default;
 
+double* GraphProblem::block(Key key) {
+  const auto it = block_offset_.find(key);
+  if (it == block_offset_.end()) throw std::out_of_range("GraphProblem: " + key.toString() + " is not a variable");
+  return blocks_.data() + it->second;
+}
+
+const double* GraphProblem::block(Key key) const { return const_cast<GraphProblem*>(this)->block(key); }
+
+void GraphProblem::loadValues() const {
+  for (const auto& [key, offset] : block_offset_) {
+    const double* value = values_.data(key);
+    std::copy(value, value + values_.size(key), blocks_.begin() + std::ptrdiff_t(offset));
+  }
+}
+
+void GraphProblem::storeValues() {
+  for (const auto& [key, offset] : block_offset_) {
+    double* value = values_.data(key);
+    std::copy(blocks_.begin() + std::ptrdiff_t(offset), blocks_.begin() + std::ptrdiff_t(offset) + values_.size(key),
+              value);
+  }
+}
+
 std::shared_ptr<ceres::ParameterBlockOrdering> GraphProblem::schurOrdering() const {
   if (eliminated_landmarks_.empty()) return nullptr;
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  for (const Key& key : variables_) ordering->AddElementToGroup(values_.data(key), 1);
-  for (const Key& key : eliminated_landmarks_) ordering->AddElementToGroup(values_.data(key), 0);
+  for (const Key& key : variables_) ordering->AddElementToGroup(block(key), 1);
+  for (const Key& key : eliminated_landmarks_) ordering->AddElementToGroup(block(key), 0);
   return ordering;
 }
 
 std::vector<FactorEvaluation> GraphProblem::evaluateFactors(int num_threads) const {
   std::vector<FactorEvaluation> evaluations;
   if (residual_blocks_.empty()) return evaluations;
+  loadValues();
   // One multi-threaded evaluation of every whitened residual without the
   // loss; the loss is applied here per factor, so outliers can be told apart.
   ceres::Problem::EvaluateOptions evaluate_options;

@@ -111,6 +111,20 @@ class GraphProblem {
 
   ceres::Problem& problem() { return *problem_; }
   const ceres::Problem& problem() const { return *problem_; }
+
+  // Ceres's parameter block of `key`: the problem's own copy of the value,
+  // held with every other in one buffer in key order. Ceres orders the
+  // blocks of an elimination group by their addresses, and so the order of
+  // the Schur complement's sums: with blocks scattered on the heap that
+  // order (and the last bits of every solve) followed the allocator's
+  // history, which another thread's frees can change from run to run. In
+  // key order a solve gives the same bits in every run.
+  double* block(Key key);
+  const double* block(Key key) const;
+  // Values -> the blocks (before Ceres reads them: solve, evaluation,
+  // covariance) and the blocks -> Values (after a solve).
+  void loadValues() const;
+  void storeValues();
   const FactorGraph& graph() const { return graph_; }
   Values& values() { return values_; }
   const GraphProblemOptions& options() const { return options_; }
@@ -154,6 +168,8 @@ class GraphProblem {
   std::unique_ptr<ceres::Problem> problem_;
 
   std::vector<Key> variables_;
+  mutable std::vector<double> blocks_;        // every variable's value, in key order
+  std::map<Key, std::size_t> block_offset_;  // where each starts in blocks_
   std::vector<Key> eliminated_landmarks_;
   std::vector<ceres::ResidualBlockId> residual_blocks_;    // by factor index
   std::vector<const ceres::LossFunction*> factor_losses_;  // by factor index (nullptr: none)

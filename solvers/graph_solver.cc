@@ -167,7 +167,9 @@ SolveReport solve(GraphProblem& problem, const SolverOptions& options) {
 
   ceres::Solver::Summary summary;
   const auto start = std::chrono::steady_clock::now();
+  problem.loadValues();
   ceres::Solve(ceres_options, &problem.problem(), &summary);
+  problem.storeValues();
   report.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -1,5 +1,7 @@
 #include "solvers/landmark_schur_covariance.h"
 
+#include "core/util/thread_budget.h"
+
 #include <ceres/crs_matrix.h>
 #include <ceres/problem.h>
 
@@ -145,11 +147,12 @@ void LandmarkSchur::evaluateAndReduce(GraphProblem& problem, const CovarianceOpt
   // J over [reduced | eliminated landmarks], tangent-space columns (Ceres
   // applies the manifolds), whitened and robustified as in the solve.
   ceres::Problem::EvaluateOptions evaluate_options;
-  for (const Key& key : reduced_) evaluate_options.parameter_blocks.push_back(values.data(key));
-  for (const Key& key : landmarks_) evaluate_options.parameter_blocks.push_back(values.data(key));
+  problem.loadValues();
+  for (const Key& key : reduced_) evaluate_options.parameter_blocks.push_back(problem.block(key));
+  for (const Key& key : landmarks_) evaluate_options.parameter_blocks.push_back(problem.block(key));
   evaluate_options.apply_loss_function = options.apply_loss_function;
   int threads = options.num_threads;
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (threads <= 0) threads = threadBudget();
   evaluate_options.num_threads = threads;
   // J is evaluated a pass of residual blocks at a time and reduced into
   // H_cc (dense: it becomes S), the landmarks' 3x3 blocks of H_ll and the

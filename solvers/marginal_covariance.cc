@@ -1,5 +1,7 @@
 #include "solvers/marginal_covariance.h"
 
+#include "core/util/thread_budget.h"
+
 #include <ceres/covariance.h>
 
 #include <algorithm>
@@ -58,7 +60,7 @@ ceres::Covariance::Options ceresOptions(const CovarianceOptions& options) {
   ceres_options.null_space_rank = 0;
   ceres_options.apply_loss_function = options.apply_loss_function;
   int threads = options.num_threads;
-  if (threads <= 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  if (threads <= 0) threads = threadBudget();
   ceres_options.num_threads = threads;
   return ceres_options;
 }
@@ -83,8 +85,9 @@ std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
     return internal::landmarkSchurMarginalCovariances(problem, keys, options);
   }
   Values& values = problem.values();
+  problem.loadValues();
   std::vector<std::pair<const double*, const double*>> pairs;
-  for (const Key& key : keys) pairs.emplace_back(values.data(key), values.data(key));
+  for (const Key& key : keys) pairs.emplace_back(problem.block(key), problem.block(key));
   ceres::Covariance covariance(ceresOptions(options));
   if (!covariance.Compute(pairs, &problem.problem())) rankDeficient(problem);
 
@@ -92,7 +95,7 @@ std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
   for (const Key& key : keys) {
     const int n = values.tangentSize(key);
     RowMajorMatrix block(n, n);
-    if (!covariance.GetCovarianceBlockInTangentSpace(values.data(key), values.data(key),
+    if (!covariance.GetCovarianceBlockInTangentSpace(problem.block(key), problem.block(key),
                                                      block.data())) {
       throw std::runtime_error("marginal covariance: Ceres did not return the block of " +
                                key.toString());
@@ -110,10 +113,11 @@ Eigen::MatrixXd jointMarginalCovariance(GraphProblem& problem, const std::vector
     return internal::landmarkSchurJointCovariance(problem, keys, options);
   }
   Values& values = problem.values();
+  problem.loadValues();
   std::vector<const double*> blocks;
   int n = 0;
   for (const Key& key : keys) {
-    blocks.push_back(values.data(key));
+    blocks.push_back(problem.block(key));
     n += values.tangentSize(key);
   }
   ceres::Covariance covariance(ceresOptions(options));

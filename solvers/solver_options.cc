@@ -1,5 +1,7 @@
 #include "solvers/solver_options.h"
 
+#include "core/util/thread_budget.h"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -42,8 +44,7 @@ void SolverOptions::validate() const {
 
 int SolverOptions::resolvedNumThreads() const {
   if (num_threads > 0) return num_threads;
-  const unsigned hardware = std::thread::hardware_concurrency();
-  return hardware == 0 ? 1 : static_cast<int>(hardware);
+  return threadBudget();
 }
 
 ceres::Solver::Options SolverOptions::toCeres() const {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <cmath>
 #include <string>
 
@@ -107,11 +109,11 @@ TEST(GraphProblem, RejectsAConstantKeyThatNamesNoVariable) {
             "present in Values");
 }
 
-TEST(GraphProblem, UsesTheValuesBlocksWithTheSe3ManifoldOnPosesOnly) {
+TEST(GraphProblem, HasOneBlockPerVariableInKeyOrderWithTheSe3ManifoldOnPosesOnly) {
   FactorGraph graph;
   Values values;
-  values.insertPose(X(0), Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero());
-  values.insertPoint(L(0), Eigen::Vector3d::Zero());
+  values.insertPose(X(0), Eigen::Quaterniond::Identity(), Eigen::Vector3d(1.0, 2.0, 3.0));
+  values.insertPoint(L(0), Eigen::Vector3d(4.0, 5.0, 6.0));
   values.insertPoint(L(9), Eigen::Vector3d::Zero());  // unused: not in the problem
   graph.emplace<test::TestPosePriorFactor>(X(0), SE3d(), NoiseModel::isotropic(6, 1.0));
   graph.add(prior(L(0), Eigen::Vector3d::Ones()));
@@ -121,17 +123,29 @@ TEST(GraphProblem, UsesTheValuesBlocksWithTheSe3ManifoldOnPosesOnly) {
   ceres::Problem& ceres_problem = problem.problem();
   EXPECT_EQ(ceres_problem.NumParameterBlocks(), 2);
   EXPECT_EQ(ceres_problem.NumResidualBlocks(), 2);
-  EXPECT_TRUE(ceres_problem.HasParameterBlock(values.data(X(0))));
-  EXPECT_TRUE(ceres_problem.HasParameterBlock(values.data(L(0))));
-  EXPECT_FALSE(ceres_problem.HasParameterBlock(values.data(L(9))));
-  ASSERT_NE(ceres_problem.GetManifold(values.data(X(0))), nullptr);
-  EXPECT_EQ(ceres_problem.ParameterBlockTangentSize(values.data(X(0))), 6);
-  EXPECT_EQ(ceres_problem.GetManifold(values.data(L(0))), nullptr);
-  EXPECT_TRUE(ceres_problem.IsParameterBlockConstant(values.data(L(0))));
+  EXPECT_TRUE(ceres_problem.HasParameterBlock(problem.block(X(0))));
+  EXPECT_TRUE(ceres_problem.HasParameterBlock(problem.block(L(0))));
+  EXPECT_THROW(problem.block(L(9)), std::out_of_range);
+  ASSERT_NE(ceres_problem.GetManifold(problem.block(X(0))), nullptr);
+  EXPECT_EQ(ceres_problem.ParameterBlockTangentSize(problem.block(X(0))), 6);
+  EXPECT_EQ(ceres_problem.GetManifold(problem.block(L(0))), nullptr);
+  EXPECT_TRUE(ceres_problem.IsParameterBlockConstant(problem.block(L(0))));
   EXPECT_EQ(problem.numConstantVariables(), 1u);
-  EXPECT_FALSE(ceres_problem.IsParameterBlockConstant(values.data(X(0))));
+  EXPECT_FALSE(ceres_problem.IsParameterBlockConstant(problem.block(X(0))));
   EXPECT_EQ(problem.variables(), (std::vector<Key>{X(0), L(0)}));
   EXPECT_EQ(problem.numFreeParameters(), 6);
+  // One buffer in key order (Ceres orders a group's blocks by address), the
+  // values copied in, and back out when asked.
+  EXPECT_EQ(problem.block(L(0)), problem.block(X(0)) + values.size(X(0)));
+  for (int i = 0; i < values.size(X(0)); ++i) EXPECT_EQ(problem.block(X(0))[i], values.data(X(0))[i]);
+  EXPECT_EQ(problem.block(L(0))[2], 6.0);
+  problem.block(L(0))[2] = 7.0;
+  EXPECT_EQ(values.data(L(0))[2], 6.0);
+  problem.storeValues();
+  EXPECT_EQ(values.data(L(0))[2], 7.0);
+  values.data(L(0))[2] = 8.0;
+  problem.loadValues();
+  EXPECT_EQ(problem.block(L(0))[2], 8.0);
 }
 
 TEST(GraphProblem, RobustLossesApplyToTheWhitenedResidualInSigmas) {
@@ -212,8 +226,8 @@ TEST(GraphProblem, SetsBoundsAndRejectsUnsoundOnes) {
   options.bounds = {{D(0), 0, -0.5, 0.5}};
   {
     GraphProblem problem(graph, values, options);
-    EXPECT_EQ(problem.problem().GetParameterLowerBound(values.data(D(0)), 0), -0.5);
-    EXPECT_EQ(problem.problem().GetParameterUpperBound(values.data(D(0)), 0), 0.5);
+    EXPECT_EQ(problem.problem().GetParameterLowerBound(problem.block(D(0)), 0), -0.5);
+    EXPECT_EQ(problem.problem().GetParameterUpperBound(problem.block(D(0)), 0), 0.5);
   }
   options.bounds = {{X(0), 4, -1.0, 1.0}};
   EXPECT_EQ(constructionError(graph, values, options),
