@@ -17,7 +17,14 @@ The rules:
     so its layer can be read from it;
   - benchmarks/ includes from tests/ only tests/support/;
   - tests/X includes from tests/ only tests/support/ and its own folder
-    tests/X/; tests/ never includes benchmarks/.
+    tests/X/; tests/ never includes benchmarks/;
+  - a pipelines/ folder includes another pipelines/ folder's public headers
+    only (PUBLIC_HEADERS below), never its internals;
+  - a stage of `hsmap run` (pipelines/run/*_stage.*) never includes another
+    stage (stages never call each other: the runner alone knows their order,
+    and shared work is a pipeline function in its own folder);
+  - tools/ includes from pipelines/ only the entry points (TOOL_ENTRY_POINTS):
+    the runner's, the simulator's, the evaluator's and the sample's.
 
 Prints one line per violation, "file:line: includes "x": rule", and exits
 with 1 if there is any, 0 if none. Needs no build and no package beyond the
@@ -37,6 +44,31 @@ TOP_FOLDERS = LAYERS + ["tests", "benchmarks"]
 SOURCE_EXTENSIONS = (".h", ".hh", ".hpp", ".cc", ".cpp", ".cxx")
 SUPPORT = "tests/support"
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^">]*)[">]')
+
+# What each pipelines/ folder offers the others; everything else in it is
+# its own. A folder not listed offers nothing.
+PUBLIC_HEADERS = {
+    "frontend": {"frontend_result.h", "frontend_runner.h", "frontend_options.h", "frontend_outputs.h",
+                 "visual_map.h", "visual_map_files.h", "frame_pose_estimator.h"},
+    "georef": {"georef_result.h", "georef_outputs.h", "georef_options.h", "georef_bundle_adjuster.h",
+               "sequential_georef.h", "planar_georef.h", "camera_trajectory.h", "ins_alignment.h"},
+    "surface": {"surface_meshing.h"},
+    "products": {"product_casting.h", "hyperspectral_ortho.h", "hyperspectral_point_cloud.h",
+                 "stacked_products.h", "rgb_ortho.h", "ortho_grid.h", "ortho_grid_from_header.h",
+                 "ortho_accumulator.h", "scan_line_caster.h", "spectrum_validity.h"},
+    "calibration": {"extrinsic_refinement.h", "extrinsic_refinement_options.h", "extrinsic_tie_point.h",
+                    "extrinsic_from_tie_points.h", "run_tie_points.h", "strip_tie_points.h"},
+    "joint": {"joint_problem.h", "joint_solution.h", "joint_spline.h"},
+    "evaluate": {"evaluate_run.h"},
+    "simulate": {"simulate_survey.h", "simulation_config.h", "simulation_config_yaml.h"},
+    "run": {"runner.h", "run_options.h"},
+}
+# What tools/ may include from pipelines/.
+TOOL_ENTRY_POINTS = {"pipelines/run/runner.h", "pipelines/run/run_options.h",
+                     "pipelines/simulate/simulate_survey.h", "pipelines/simulate/simulation_config.h",
+                     "pipelines/simulate/simulation_config_yaml.h", "pipelines/evaluate/evaluate_run.h",
+                     "pipelines/sample_survey.h"}
+STAGE_FILE = re.compile(r"^pipelines/run/(\w+)_stage\.(h|cc)$")
 
 
 def allowed_layers(layer):
@@ -74,6 +106,8 @@ def include_violation(file_rel, delimiter, included):
     if top in LAYERS:
         if first not in allowed_layers(top):
             return layer_rule(top, "include")
+        if first == "pipelines":
+            return pipelines_violation(file_rel, path)
     elif top == "benchmarks":
         if first == "tests" and not path.startswith(SUPPORT + "/"):
             return "benchmarks may include from tests/ only tests/support/ (shared test fixtures live there)"
@@ -87,6 +121,33 @@ def include_violation(file_rel, delimiter, included):
                 return "tests/support may include from tests/ only tests/support/ (shared fixtures use no folder's own)"
             return (f"{own_folder} may include from tests/ only tests/support/ and its own folder "
                     f"{own_folder}/ (fixtures shared by several folders live in tests/support/)")
+    return None
+
+
+def pipelines_folder(path):
+    """The folder of pipelines/ a path is in ("frontend"), or None for pipelines/x.h."""
+    parts = path.split("/")
+    return parts[1] if len(parts) > 2 else None
+
+
+def pipelines_violation(file_rel, path):
+    """The pipelines/ rule that file_rel including `path` (under pipelines/) breaks, or None."""
+    top = file_rel.split("/", 1)[0]
+    if top == "tools":
+        if path not in TOOL_ENTRY_POINTS:
+            return ("tools may include from pipelines/ only the entry points "
+                    + ", ".join(sorted(TOOL_ENTRY_POINTS)) + " (the runner runs the stages)")
+        return None
+    own, other = pipelines_folder(file_rel), pipelines_folder(path)
+    stage, included_stage = STAGE_FILE.match(file_rel), STAGE_FILE.match(path)
+    if stage and included_stage and stage.group(1) != included_stage.group(1):
+        return (f"the {stage.group(1)} stage calls the {included_stage.group(1)} stage: stages never call "
+                "each other (the runner alone knows their order; shared work is a pipeline function)")
+    if other is None or own == other:
+        return None
+    if posixpath.basename(path) not in PUBLIC_HEADERS.get(other, set()):
+        return (f"includes an internal header of pipelines/{other}/: a pipelines folder may include "
+                f"another's public headers only (PUBLIC_HEADERS in scripts/check_layering.py)")
     return None
 
 
