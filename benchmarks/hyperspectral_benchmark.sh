@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The products stage (ray casting of every UHI scan line + the hyperspectral
 # ortho-image) against the time to read the cube once: for each SURVEY
-#   hsmap run SURVEY --out RUN --until surface         (once, if RUN/map/mesh.ply is missing)
+#   hsmap run SURVEY --out RUN --until refine ARGS      (once, if the refine stage has not finished)
 #   cat SURVEY/uhi/cube.raw > /dev/null                 (timed, from storage: the read floor, in this run)
-#   hsmap run SURVEY --out RUN --from products --force  (under /usr/bin/time -v)
+#   hsmap run SURVEY --out RUN --from products ARGS     (under /usr/bin/time -v)
 # and prints one Markdown table: scan lines, the products stage's time
 # (run.yaml), the ray casting plus ortho-image alone (from the stage's log:
 # reading the mesh and building its BVH, the footprint cast and the ortho
@@ -48,11 +48,14 @@ echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for survey in "${surveys[@]}"; do
   name=$(basename "$survey")
   run="$work/hsmap_products_$name"
-  if [[ ! -f "$run/map/mesh.ply" ]]; then
-    "$hsmap" run "$survey" --out "$run" --until surface >"$run.surface.log" 2>&1
+  if [[ ! -f "$run/stages/refine.yaml" ]]; then
+    # The stages before products, with the same options (the refine stage's
+    # --extrinsic-rounds among PRODUCTS_ARGS), so that --from products finds
+    # them up to date.
+    "$hsmap" run "$survey" --out "$run" --until refine "${products_args[@]}" >"$run.surface.log" 2>&1
   fi
   for ((repeat = 1; repeat <= repeats; ++repeat)); do
-    # The previous repeat's products go first, untimed: --force would delete
+    # The previous repeat's products go first, untimed: the run would delete
     # them inside the run, and freeing a 15 GB ortho-image (on a file system
     # mounted with `discard`, trimming its blocks) slows the writes that
     # follow for seconds. A user's run writes into a fresh folder.
@@ -70,7 +73,7 @@ for survey in "${surveys[@]}"; do
     write_gb_s=$(awk -v a="$start" -v b="$(seconds_now)" -v n="$cube_bytes" 'BEGIN { print n / 1e9 / (b - a) }')
     rm -f "$run.write_speed"
     sync
-    /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products --force "${products_args[@]}" \
+    /usr/bin/time -v "$hsmap" run "$survey" --out "$run" --from products "${products_args[@]}" \
       >"$run.products.log" 2>"$run.products.time"
     # The stage's time from the run record, else the whole process's.
     stage_s=$(grep -oE "\{name: products, time_s: [0-9.eE+-]+" "$run/run.yaml" | awk '{print $NF}' || true)

@@ -1,4 +1,4 @@
-// rgb_ortho_tool: measures the RGB ortho-image (pipelines/hyperspectral/rgb_ortho.h)
+// rgb_ortho_tool: measures the RGB ortho-image (pipelines/products/rgb_ortho.h)
 // of a run's mesh, on the grid of `--pixel` covering the whole mesh (what the
 // hyperspectral ortho-image's grid is at most). Run it under /usr/bin/time -v
 // for the peak memory of the whole process.
@@ -18,7 +18,7 @@
 
 #include "core/geometry/utm_projection.h"
 #include "core/io/ply_io.h"
-#include "pipelines/hyperspectral/rgb_ortho.h"
+#include "pipelines/products/rgb_ortho.h"
 
 int main(int argc, char** argv) {
   using Clock = std::chrono::steady_clock;

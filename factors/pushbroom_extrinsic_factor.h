@@ -2,7 +2,7 @@
 // PushbroomExtrinsicFactor: a known 3D point seen by one pixel of one UHI scan
 // line whose RGB-camera pose is known; only the extrinsic T_C_U is estimated.
 // This is the factor of the products-stage extrinsic refinement
-// (pipelines/hyperspectral/extrinsic_refinement.h), where the line poses come
+// (pipelines/calibration/extrinsic_refinement.h), where the line poses come
 // from the run's trajectory and the points from the RGB ortho-image's mesh.
 //
 //   variable   e = T_C_U (pose, usually E(0))

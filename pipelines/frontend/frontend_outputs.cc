@@ -11,17 +11,16 @@
 #include "core/survey/number_text.h"
 #include "core/util/input_error.h"
 #include "core/util/text_file.h"
+#include "pipelines/frontend/csv_cells.h"
+#include "pipelines/frontend/visual_map_files.h"
 
 namespace hsmap {
 
 namespace {
 
 namespace fs = std::filesystem;
+using namespace csv_cells;
 
-const std::vector<std::string> kKeyframesHeader{"keyframe", "frame", "t",  "segment", "x", "y",
-                                                "z",        "qw",    "qx", "qy",      "qz"};
-const std::vector<std::string> kObservationsHeader{"keyframe", "landmark", "u", "v"};
-const std::vector<std::string> kLandmarksHeader{"landmark", "x", "y", "z", "observations", "keyframes"};
 const std::vector<std::string> kFramesHeader{"frame", "t", "posed", "segment", "x", "y",
                                              "z",     "qw", "qx",   "qy",      "qz"};
 const std::vector<std::string> kStatsHeader{
@@ -33,13 +32,6 @@ const std::vector<std::string> kSegmentsHeader{"segment", "first_frame", "last_f
                                                "reference", "linked", "scale", "qw", "qx", "qy", "qz",
                                                "x", "y", "z", "ins_rms_m", "note"};
 
-std::string header(const std::vector<std::string>& columns) {
-  std::string text;
-  for (std::size_t i = 0; i < columns.size(); ++i) text += (i ? "," : "") + columns[i];
-  return text + "\n";
-}
-
-std::string number(double value) { return formatDouble(value); }
 
 // A float pixel in its own shortest round-trip form ("123.45679", not the
 // 17 digits of the double it converts to): read back as a float, exact.
@@ -63,42 +55,11 @@ float readPixel(const CsvTable& table, const CsvTable::Row& row, std::size_t col
   return value;
 }
 
-std::string pose(const SE3d& T) {
-  return number(T.t.x()) + "," + number(T.t.y()) + "," + number(T.t.z()) + "," + number(T.q.w()) + "," +
-         number(T.q.x()) + "," + number(T.q.y()) + "," + number(T.q.z());
-}
-
 std::string cleanText(std::string text) {
   std::replace(text.begin(), text.end(), ',', ';');
   std::replace(text.begin(), text.end(), '\n', ' ');
   std::replace(text.begin(), text.end(), '\r', ' ');
   return text;
-}
-
-void writeFile(const fs::path& path, const std::string& text) {
-  AtomicFile file(path);
-  file.stream() << text;
-  file.commit();
-}
-
-SE3d readPose(const CsvTable& table, const CsvTable::Row& row, std::size_t first) {
-  const Eigen::Vector3d t(table.number(row, first), table.number(row, first + 1),
-                          table.number(row, first + 2));
-  const Eigen::Quaterniond q(table.number(row, first + 3), table.number(row, first + 4),
-                             table.number(row, first + 5), table.number(row, first + 6));
-  if (std::abs(q.norm() - 1.0) > 1e-6) {
-    throw InputError(table.file, InputError::atLine(row.line_number),
-                     "columns qw,qx,qy,qz: expected a unit quaternion");
-  }
-  return SE3d(q, t);
-}
-
-int id(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
-  return static_cast<int>(table.integer(row, column));
-}
-
-[[noreturn]] void bad(const CsvTable& table, const CsvTable::Row& row, const std::string& detail) {
-  throw InputError(table.file, InputError::atLine(row.line_number), detail);
 }
 
 // The rows of a CSV table one at a time, under the rules and with the
@@ -193,28 +154,7 @@ void writeFrontendOutputs(const fs::path& run_folder, const FrontendResult& resu
   fs::remove_all(partial);
   fs::create_directories(partial);
 
-  std::ostringstream keyframes, observations, landmarks;
-  keyframes << header(kKeyframesHeader);
-  observations << header(kObservationsHeader);
-  for (const Keyframe& k : result.map.keyframes()) {
-    keyframes << k.id << "," << k.frame_index << "," << number(k.t) << "," << k.segment << ","
-              << pose(k.T_F_C) << "\n";
-    for (const auto& o : k.observations) {
-      observations << k.id << "," << o.landmark_id << "," << number(o.pixel.x()) << ","
-                   << number(o.pixel.y()) << "\n";
-    }
-  }
-  landmarks << header(kLandmarksHeader);
-  for (const Landmark& l : result.map.landmarks()) {
-    if (!l.valid) continue;
-    landmarks << l.id << "," << number(l.p_F.x()) << "," << number(l.p_F.y()) << ","
-              << number(l.p_F.z()) << "," << l.keyframe_ids.size() << ",";
-    for (std::size_t i = 0; i < l.keyframe_ids.size(); ++i) landmarks << (i ? " " : "") << l.keyframe_ids[i];
-    landmarks << "\n";
-  }
-  writeFile(partial / frontend_files::keyframes, keyframes.str());
-  writeFile(partial / frontend_files::observations, observations.str());
-  writeFile(partial / frontend_files::landmarks, landmarks.str());
+  writeVisualMapFiles(partial, result.map);
 
   std::ostringstream frames, stats, tum;
   frames << header(kFramesHeader);
@@ -276,56 +216,7 @@ FrontendResult readFrontendOutputs(const fs::path& run_folder) {
   const fs::path folder = run_folder / frontend_files::folder;
   FrontendResult result;
 
-  // Keyframes, then landmarks, then the observations that tie them.
-  const CsvTable keyframe_table = readCsvTable(folder / frontend_files::keyframes, {kKeyframesHeader});
-  std::vector<Keyframe> keyframes;
-  for (const auto& row : keyframe_table.rows) {
-    Keyframe k;
-    k.id = id(keyframe_table, row, 0);
-    if (k.id != int(keyframes.size())) bad(keyframe_table, row, "keyframe ids must count 0, 1, 2, ...");
-    k.frame_index = id(keyframe_table, row, 1);
-    k.t = keyframe_table.number(row, 2);
-    k.segment = id(keyframe_table, row, 3);
-    k.T_F_C = readPose(keyframe_table, row, 4);
-    keyframes.push_back(std::move(k));
-  }
-  const CsvTable landmark_table = readCsvTable(folder / frontend_files::landmarks, {kLandmarksHeader});
-  std::vector<Landmark> landmarks;
-  for (const auto& row : landmark_table.rows) {
-    const int l = id(landmark_table, row, 0);
-    if (l < int(landmarks.size())) bad(landmark_table, row, "landmark ids must increase");
-    while (int(landmarks.size()) < l) {  // ids of removed landmarks: empty slots
-      Landmark gap;
-      gap.id = int(landmarks.size());
-      gap.valid = false;
-      landmarks.push_back(gap);
-    }
-    Landmark landmark;
-    landmark.id = l;
-    landmark.p_F = {landmark_table.number(row, 1), landmark_table.number(row, 2),
-                    landmark_table.number(row, 3)};
-    landmarks.push_back(landmark);
-  }
-  const CsvTable observation_table =
-      readCsvTable(folder / frontend_files::observations, {kObservationsHeader});
-  for (const auto& row : observation_table.rows) {
-    const int k = id(observation_table, row, 0);
-    const int l = id(observation_table, row, 1);
-    if (k < 0 || k >= int(keyframes.size())) bad(observation_table, row, "unknown keyframe " + std::to_string(k));
-    if (l < 0 || l >= int(landmarks.size()) || !landmarks[std::size_t(l)].valid) {
-      bad(observation_table, row, "unknown landmark " + std::to_string(l));
-    }
-    keyframes[std::size_t(k)].observations.push_back(
-        {l, Eigen::Vector2d(observation_table.number(row, 2), observation_table.number(row, 3))});
-    landmarks[std::size_t(l)].keyframe_ids.push_back(k);
-  }
-  for (const auto& row : landmark_table.rows) {
-    const Landmark& landmark = landmarks[std::size_t(id(landmark_table, row, 0))];
-    if (int(landmark.keyframe_ids.size()) != id(landmark_table, row, 4)) {
-      bad(landmark_table, row, "column 'observations' does not match observations.csv");
-    }
-  }
-  result.map.assign(std::move(keyframes), std::move(landmarks));
+  result.map = readVisualMapFiles(folder);
 
   const CsvTable frame_table = readCsvTable(folder / frontend_files::frames, {kFramesHeader});
   const CsvTable stats_table = readCsvTable(folder / frontend_files::frame_stats, {kStatsHeader});

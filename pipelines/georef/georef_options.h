@@ -24,6 +24,10 @@ struct GeorefOptions {
   double ins_correlation_time_s = 10.0;
   // Window of the along-track heading when the INS has no attitude.
   double heading_window_s = 20.0;
+
+  // std::invalid_argument naming the field and what was expected; the
+  // geo-referencing functions call it.
+  void validate() const;
 };
 
 }  // namespace hsmap

@@ -1,32 +1,21 @@
 #include "pipelines/georef/georef_outputs.h"
 
-#include <fstream>
-#include <iomanip>
+#include <map>
 #include <system_error>
 
 #include "core/io/atomic_file.h"
 #include "core/io/ply_io.h"
 #include "core/io/results_folder.h"
+#include "core/survey/csv_table.h"
 #include "core/survey/number_text.h"
 #include "core/survey/pose_tables.h"
-#include "core/survey/run_calibration.h"
+#include "core/util/input_error.h"
+#include "pipelines/frontend/visual_map_files.h"
 
 namespace hsmap {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kStaging = "georef.partial";
-constexpr const char* kFramesTum = "trajectory/frames.tum";
-constexpr const char* kLinesTum = "trajectory/uhi_lines.tum";
-constexpr const char* kPoseSources = "trajectory/pose_sources.csv";
-constexpr const char* kSummary = "georef/summary.txt";
-
-fs::path prepared(const fs::path& root, const fs::path& relative) {
-  const fs::path path = root / relative;
-  fs::create_directories(path.parent_path());
-  return path;
-}
 
 void writeText(const fs::path& path, const std::string& text) {
   AtomicFile file(path);
@@ -45,19 +34,48 @@ std::string poseSourcesCsv(const GeorefResult& result) {
   return text;
 }
 
-}  // namespace
-
-std::vector<fs::path> georefProductPaths(const GeorefResult& result) {
-  std::vector<fs::path> paths = {results_paths::trajectory_frames, kFramesTum,
-                                 results_paths::trajectory_uhi_lines, kLinesTum, kPoseSources,
-                                 results_paths::calibration_yaml, kSummary};
-  if (!result.landmarks_W.empty()) paths.push_back(results_paths::sparse_ply);
-  return paths;
+std::string rejectedFixesCsv(const GeorefResult& result) {
+  std::string text = "fix,ins_line,t,offset_m,step\n";
+  for (const RejectedFix& fix : result.rejected_fixes) {
+    text += std::to_string(fix.fix) + "," + std::to_string(fix.line_number) + "," + formatDouble(fix.t) + "," +
+            formatDouble(fix.offset_m) + "," + fix.stage + "\n";
+  }
+  return text;
 }
 
-void writeGeorefOutputs(const fs::path& run_folder, const GeorefResult& result) {
-  const fs::path staging = run_folder / kStaging;
+PoseSource poseSource(const CsvTable& table, const CsvTable::Row& row, std::size_t column) {
+  const std::string& text = row.cells[column];
+  for (PoseSource source : {PoseSource::vision, PoseSource::ins_bridged, PoseSource::ins_only, PoseSource::held}) {
+    if (text == toString(source)) return source;
+  }
+  throw InputError(table.file, InputError::atLine(row.line_number),
+                   "column 'source': expected vision, ins_bridged, ins_only or held, got '" + text + "'");
+}
+
+}  // namespace
+
+RunCalibration georefCalibration(const GeorefResult& result, std::vector<std::string> warnings) {
+  RunCalibration calibration;
+  calibration.variant = result.variant;
+  calibration.T_C_U.rotation = result.T_C_U.q;
+  calibration.T_C_U.translation_m = result.T_C_U.t;
+  calibration.time_offset_s = result.time_offset_s;
+  if (warnings.empty()) {
+    warnings.push_back("T_C_U and time_offset_s are the survey.yaml guesses: the " + result.variant +
+                       " variant does not estimate them");
+  }
+  calibration.warnings = std::move(warnings);
+  return calibration;
+}
+
+void writeGeorefOutputs(const fs::path& folder, const GeorefResult& result) {
+  writeGeorefOutputs(folder, result, georefCalibration(result));
+}
+
+void writeGeorefOutputs(const fs::path& folder, const GeorefResult& result, const RunCalibration& calibration) {
+  const fs::path staging = AtomicFile::partialPathFor(folder);
   fs::remove_all(staging);
+  fs::create_directories(staging);
   std::vector<TimedPose> frames;
   frames.reserve(result.frames.size());
   for (const auto& f : result.frames) frames.push_back({f.t, f.T_W_C});
@@ -68,37 +86,77 @@ void writeGeorefOutputs(const fs::path& run_folder, const GeorefResult& result) 
     lines.push_back({l.line, l.t, l.T_W_U});
     lines_timed.push_back({l.t, l.T_W_U});
   }
-  writeTimedPoseTable(prepared(staging, results_paths::trajectory_frames), frames);
-  writeTumTrajectory(prepared(staging, kFramesTum), frames);
-  writeLinePoseTable(prepared(staging, results_paths::trajectory_uhi_lines), lines);
-  writeTumTrajectory(prepared(staging, kLinesTum), lines_timed);
-  writeText(prepared(staging, kPoseSources), poseSourcesCsv(result));
-
-  RunCalibration calibration;
-  calibration.variant = result.variant;
-  calibration.T_C_U.rotation = result.T_C_U.q;
-  calibration.T_C_U.translation_m = result.T_C_U.t;
-  calibration.time_offset_s = result.time_offset_s;
-  calibration.warnings.push_back("T_C_U and time_offset_s are the survey.yaml guesses: the " +
-                                 result.variant + " variant does not estimate them");
-  writeRunCalibration(prepared(staging, results_paths::calibration_yaml), calibration);
-
+  writeTimedPoseTable(staging / georef_files::frames, frames);
+  writeTumTrajectory(staging / georef_files::frames_tum, frames);
+  writeLinePoseTable(staging / georef_files::lines, lines);
+  writeTumTrajectory(staging / georef_files::lines_tum, lines_timed);
+  writeText(staging / georef_files::pose_sources, poseSourcesCsv(result));
+  // Tables with no row are not written (the CSV rules refuse them): a
+  // missing file reads as none.
+  if (!result.rejected_fixes.empty()) {
+    writeText(staging / georef_files::rejected_fixes, rejectedFixesCsv(result));
+  }
+  writeRunCalibration(staging / georef_files::calibration, calibration);
+  if (!result.map_W.keyframes().empty()) writeVisualMapFiles(staging, result.map_W);
   if (!result.landmarks_W.empty()) {
     PlyMesh cloud;
     cloud.vertices = result.landmarks_W;
-    writePly(prepared(staging, results_paths::sparse_ply), cloud);
+    writePly(staging / georef_files::sparse_ply, cloud);
   }
   std::string summary = result.summary() + "\n";
   for (const auto& warning : result.warnings) summary += "warning: " + warning + "\n";
-  writeText(prepared(staging, kSummary), summary);
+  writeText(staging / georef_files::summary, summary);
 
   // Everything is complete: move it into place.
-  for (const fs::path& relative : georefProductPaths(result)) {
-    const fs::path target = prepared(run_folder, relative);
-    fs::rename(staging / relative, target);
+  fs::remove_all(folder);
+  fs::rename(staging, folder);
+}
+
+GeorefResult readGeorefOutputs(const fs::path& folder) {
+  GeorefResult result;
+  const RunCalibration calibration = readRunCalibration(folder / georef_files::calibration);
+  result.variant = calibration.variant;
+  result.T_C_U = SE3d(calibration.T_C_U.rotation, calibration.T_C_U.translation_m);
+  result.time_offset_s = calibration.time_offset_s;
+
+  const std::vector<TimedPose> frames = readTimedPoseTable(folder / georef_files::frames);
+  const std::vector<LinePose> lines = readLinePoseTable(folder / georef_files::lines);
+  const CsvTable sources = readCsvTable(folder / georef_files::pose_sources, {{"kind", "index", "t", "source"}});
+  std::size_t frame = 0, line = 0;
+  for (const auto& row : sources.rows) {
+    const std::string& kind = row.cells[0];
+    const long long index = sources.integer(row, 1);
+    const PoseSource source = poseSource(sources, row, 3);
+    if (kind == "frame" && frame < frames.size()) {
+      result.frames.push_back({int(index), frames[frame].t, frames[frame].T, source});
+      ++frame;
+    } else if (kind == "line" && line < lines.size() && lines[line].line == index) {
+      result.lines.push_back({lines[line].line, lines[line].t, lines[line].T, source});
+      ++line;
+    } else {
+      throw InputError(sources.file, InputError::atLine(row.line_number),
+                       std::string("expected the rows of ") + georef_files::frames + " then of " +
+                           georef_files::lines + ", in their order, got '" + kind + "' " + std::to_string(index));
+    }
   }
-  std::error_code ignored;
-  fs::remove_all(staging, ignored);
+  if (frame != frames.size() || line != lines.size()) {
+    throw InputError(sources.file, "", "expected a row for each of the " + std::to_string(frames.size()) +
+                                       " frames and " + std::to_string(lines.size()) + " scan lines, got " +
+                                       std::to_string(frame) + " and " + std::to_string(line));
+  }
+  if (fs::exists(folder / georef_files::rejected_fixes)) {
+    const CsvTable rejected =
+        readCsvTable(folder / georef_files::rejected_fixes, {{"fix", "ins_line", "t", "offset_m", "step"}});
+    for (const auto& row : rejected.rows) {
+      result.rejected_fixes.push_back({int(rejected.integer(row, 0)), rejected.integer(row, 1),
+                                       rejected.number(row, 2), rejected.number(row, 3), row.cells[4]});
+    }
+  }
+  if (fs::exists(folder / visual_map_files::keyframes)) result.map_W = readVisualMapFiles(folder);
+  for (const Landmark& landmark : result.map_W.landmarks()) {
+    if (landmark.valid) result.landmarks_W.push_back(landmark.p_F);
+  }
+  return result;
 }
 
 }  // namespace hsmap

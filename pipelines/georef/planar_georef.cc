@@ -7,6 +7,7 @@
 namespace hsmap {
 
 GeorefResult runPlanarGeoref(const Survey& survey, const GeorefOptions& options) {
+  options.validate();
   GeorefResult result;
   result.variant = "planar";
   const InsBodyTrack ins(survey, options.heading_window_s);

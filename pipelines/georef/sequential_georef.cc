@@ -98,6 +98,7 @@ InsNoise surveyInsNoise(const Survey& survey, const InsBodyTrack& ins, const Geo
 
 GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& frontend,
                                  const GeorefOptions& options, const GeorefProgress& progress) {
+  options.validate();
   GeorefResult result;
   result.variant = "sequential";
   const InsBodyTrack ins(survey, options.heading_window_s);

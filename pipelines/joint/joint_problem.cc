@@ -1,5 +1,7 @@
 #include "pipelines/joint/joint_problem.h"
 
+#include "core/util/thread_budget.h"
+
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -7,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
+#include <string>
 #include <unordered_map>
 
 #include "core/geometry/pinhole_radtan_camera.h"
@@ -28,6 +32,38 @@
 #include "solvers/robust_outliers.h"
 
 namespace hsmap {
+
+void JointOptions::validate() const {
+  auto positive = [](const char* name, double value) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw std::invalid_argument(std::string("JointOptions::") + name + ": expected a finite value > 0, got " +
+                                  std::to_string(value));
+    }
+  };
+  positive("pixel_sigma_px", pixel_sigma_px);
+  positive("other_frame_sigma_factor", other_frame_sigma_factor);
+  positive("huber_sigmas", huber_sigmas);
+  positive("start_gate_px", start_gate_px);
+  positive("sigma_match_m", sigma_match_m);
+  if (sigma_match_along_m < 0.0 || !std::isfinite(sigma_match_along_m)) {
+    throw std::invalid_argument("JointOptions::sigma_match_along_m: expected >= 0 (0: sigma_match_m), got " +
+                                std::to_string(sigma_match_along_m));
+  }
+  positive("tie_robust_scale", tie_robust_scale);
+  positive("min_frame_weight_in_support", min_frame_weight_in_support);
+  positive("sigma_linear_acceleration", sigma_linear_acceleration);
+  positive("sigma_angular_acceleration", sigma_angular_acceleration);
+  positive("weak_fraction_of_prior", weak_fraction_of_prior);
+  for (const auto& [name, value, least] :
+       {std::tuple{"min_tie_points", min_tie_points, 1}, std::tuple{"min_frames_in_support", min_frames_in_support, 1},
+        std::tuple{"max_iterations", max_iterations, 1}, std::tuple{"num_threads", num_threads, 0},
+        std::tuple{"max_rewindows", max_rewindows, 0}}) {
+    if (value < least) {
+      throw std::invalid_argument(std::string("JointOptions::") + name + ": expected >= " + std::to_string(least) +
+                                  ", got " + std::to_string(value));
+    }
+  }
+}
 
 namespace {
 
@@ -159,6 +195,7 @@ std::string JointResult::summary() const {
 }
 
 JointResult solveJointProblem(const JointInputs& in, const JointOptions& options) {
+  options.validate();
   checkInputs(in);
   JointResult result;
   result.spline = in.spline;
@@ -366,8 +403,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       return result;
     }
     const std::vector<std::size_t> beyond = factorsBeyondLossScale(
-        problem, options.num_threads > 0 ? options.num_threads
-                                         : std::max(1, int(std::thread::hardware_concurrency())));
+        problem, options.num_threads > 0 ? options.num_threads : threadBudget());
     std::unordered_map<std::size_t, std::size_t> tie_of_factor;
     for (std::size_t i = 0; i < tie_factor.size(); ++i) tie_of_factor[tie_factor[i]] = i;
     for (std::size_t index : beyond) {
@@ -420,6 +456,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
                                 (again.warnings.empty() ? std::string("no reason given") : again.warnings.front()) +
                                 "): this window's result is kept");
     }
+    result.time_offset_at_bound = true;
     result.warnings.push_back("d reached the bound of this round's window (" +
                               std::to_string(reach * 1000.0) +
                               " ms from its start): another round is needed");

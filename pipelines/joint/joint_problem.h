@@ -100,6 +100,11 @@ struct JointOptions {
   // the result, at most this many times: a time offset guess several knot
   // intervals off converges in one call instead of asking for more rounds.
   int max_rewindows = 3;
+
+  // std::invalid_argument naming the field and what was expected (every
+  // sigma, scale and fraction > 0, counts >= their least useful value).
+  // solveJointProblem calls it.
+  void validate() const;
 };
 
 // A UHI pixel of scan line `line` (recorded time t_recorded) that saw p_W.
@@ -151,6 +156,9 @@ struct JointResult {
   std::optional<double> time_offset_sigma_s;
   // Components the survey leaves weakly determined, e.g. "T_C_U rotation about U's x".
   std::vector<std::string> weakly_determined;
+  // d ended at the bound of this solve's window: another round is needed
+  // (a warning says so too, for people).
+  bool time_offset_at_bound = false;
 
   int frames = 0;
   int reprojection_factors = 0;

@@ -208,28 +208,36 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
   // One TUM line per posed frame.
   EXPECT_EQ(std::to_string(testing::countLines(run_folder / "frontend/frames.tum")), frames);
 
-  // A second run into the same folder needs --force; an unknown stage is a usage error.
-  const RunResult again = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
-                                              quoted(run_folder.string()));
-  EXPECT_EQ(again.exit_status, 1);
-  EXPECT_EQ(again.err, "error: " + (run_folder / "run.yaml").string() +
-                           " exists from an earlier run; pass --force to replace it\n");
+  // A second run into the same folder finds the stage up to date and says
+  // so; --force runs it again; an unknown stage or value is a usage error.
+  const std::string again_arguments =
+      "run " + quoted(survey_.string()) + " --out " + quoted(run_folder.string()) + " --until frontend";
+  const auto keyframes_time = std::filesystem::last_write_time(run_folder / "frontend/keyframes.csv");
+  const RunResult again = runHsmap(temp_, again_arguments);
+  EXPECT_EQ(again.exit_status, 0) << again.err;
+  EXPECT_NE(again.out.find("stage frontend: up to date, skipped"), std::string::npos) << again.out;
+  EXPECT_EQ(std::filesystem::last_write_time(run_folder / "frontend/keyframes.csv"), keyframes_time);
+  const RunResult forced = runHsmap(temp_, again_arguments + " --force");
+  EXPECT_EQ(forced.exit_status, 0) << forced.err;
+  EXPECT_EQ(forced.out.find("up to date"), std::string::npos) << forced.out;
+  EXPECT_NE(forced.out.find("front-end: " + frames + " of " + frames + " frames posed"), std::string::npos)
+      << forced.out;
   const RunResult unknown = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                                 quoted(run_folder.string()) + " --until mesh");
   EXPECT_EQ(unknown.exit_status, 1);
   EXPECT_EQ(unknown.err,
             "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef, "
-            "surface, products\n");
+            "surface, refine, products\n");
   const RunResult surface = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                                 quoted(run_folder.string()) + " --surface poisson");
   EXPECT_EQ(surface.exit_status, 1);
-  EXPECT_EQ(surface.err, "error: unknown surface 'poisson' for --surface; expected one of dense, sparse\n");
+  EXPECT_EQ(surface.err, "error: --surface: expected dense or sparse, got 'poisson'\n");
   const RunResult cell = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                              quoted(run_folder.string()) + " --point-cell 0");
   EXPECT_EQ(cell.exit_status, 1);
   EXPECT_EQ(cell.err,
-            "error: --point-cell 0: expected a cell size between 0.001 and 10 m (default 0.02; --no-points "
-            "skips the point cloud)\n");
+            "error: --point-cell: expected a cell size between 0.001 and 10 m (default 0.02; --no-points "
+            "skips the point cloud), got 0\n");
 }
 
 TEST_F(HsmapToolTest, SimulateUsageErrors) {

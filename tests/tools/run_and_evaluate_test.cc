@@ -243,7 +243,7 @@ TEST_F(RunAndEvaluate, JointWithTooFewTiePointsKeepsTheSequentialResultAndSaysWh
   ASSERT_EQ(result.exit_status, 0) << result.err << result.out;
   EXPECT_NE(result.out.find("warning: joint: round 1 not solved; the sequential result"), std::string::npos)
       << result.out;
-  expectContractFiles(joint, "joint", "joint");
+  expectContractFiles(joint, "joint");
   const RunCalibration calibration = readRunCalibration(joint / "calibration.yaml");
   ASSERT_EQ(calibration.warnings.size(), 2u);
   EXPECT_EQ(calibration.warnings[0],
@@ -260,18 +260,18 @@ TEST_F(RunAndEvaluate, JointWithTooFewTiePointsKeepsTheSequentialResultAndSaysWh
   EXPECT_GT(metric(json, "extrinsic_rotation_error_deg"), 0.5);  // the survey's 2 deg guess, kept
   EXPECT_GT(metric(json, "time_offset_error_s"), 0.005);         // and its 15 ms off d
 
-  // Had an earlier joint stage solved (calibration.yaml holds its d's
-  // 1-sigma), its surface and products would be in RUN: `--from joint` says
-  // that it starts from them, not from the sequential result.
+  // `--from joint` starts from the run's own sequential start (RUN/georef/),
+  // whatever the joint stage published: a calibration.yaml damaged in place
+  // is not read, and the stage gives the same calibration again.
+  const std::string first_calibration = readText(joint / "calibration.yaml");
   RunCalibration solved = calibration;
   solved.time_offset_sigma_s = 0.002;
   writeRunCalibration(joint / "calibration.yaml", solved);
-  const RunResult again = run("joint", joint, tinySurvey(), " --from joint --force");
+  const RunResult again = run("joint", joint, tinySurvey(), " --from joint");
   ASSERT_EQ(again.exit_status, 0) << again.err << again.out;
-  EXPECT_NE(again.out.find("warning: joint: the surface and products in " + joint.string() +
-                           " are an earlier joint stage's"),
-            std::string::npos)
+  EXPECT_NE(again.out.find("and the sequential start from " + (joint / "georef").string()), std::string::npos)
       << again.out;
+  EXPECT_EQ(readText(joint / "calibration.yaml"), first_calibration);
 }
 
 TEST_F(RunAndEvaluate, StackedWritesTheLinesSideBySideAndScoresNothing) {
@@ -313,7 +313,8 @@ TEST_F(RunAndEvaluate, AFailedStageLeavesNoProductAndNoRunYaml) {
   EXPECT_EQ(result.exit_status, 1) << result.out;
   EXPECT_NE(result.err.find("error: stage georef failed: cannot geo-reference"), std::string::npos) << result.err;
   EXPECT_TRUE(fs::exists(out / "frontend/frames.csv"));  // the stage before it completed
-  for (const char* product : {"run.yaml", "trajectory", "calibration.yaml", "map", "georef.partial"}) {
+  for (const char* product :
+       {"run.yaml", "trajectory", "calibration.yaml", "map", "georef", "georef.partial", "stages/georef.yaml"}) {
     EXPECT_FALSE(fs::exists(out / product)) << product;
   }
 }

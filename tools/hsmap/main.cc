@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   CLI::App* inspect = hsmap::addInspectCommand(app, inspect_options);
   hsmap::SampleOptions sample_options;
   CLI::App* sample = hsmap::addSampleCommand(app, sample_options);
-  hsmap::RunOptions run_options;
+  hsmap::RunCommandLine run_options;
   CLI::App* run = hsmap::addRunCommand(app, run_options);
   hsmap::SimulateOptions simulate_options;
   CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);

@@ -1,0 +1,48 @@
+#pragma once
+// The joint problem's solution (joint_problem.h) turned into the run's
+// files: the tie points it takes, every frame and scan line posed from its
+// spline, the map for meshing again, calibration.yaml. Used by the joint
+// stage (pipelines/run/joint_stage.h, docs/JOINT.md).
+
+#include <vector>
+
+#include "core/geometry/se3.h"
+#include "core/survey/pose_tables.h"
+#include "core/survey/run_calibration.h"
+#include "pipelines/calibration/extrinsic_tie_point.h"
+#include "pipelines/georef/georef_result.h"
+#include "pipelines/joint/joint_problem.h"
+
+namespace hsmap {
+
+// Each tie point with the recorded time at its continuous line position
+// (between the two lines around it); ties outside the lines are dropped.
+std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& found,
+                                          const std::vector<double>& line_times);
+
+// The georef result with every frame and scan line posed from the spline
+// where it is valid (elsewhere the sequential poses stay, the lines with the
+// new extrinsic), T_C_U, d and the landmarks the joint solution's.
+GeorefResult posedFromSpline(const GeorefResult& sequential, const JointResult& joint,
+                             const std::vector<double>& line_times);
+
+// The rigid motion G that brings the solved trajectory onto the one the
+// surface was made with (least squares over the frames' positions,
+// Eigen::umeyama without scale). The solve may settle the whole trajectory
+// a few centimetres away (its absolute position is the INS's, to
+// decimetres); T_C_U and d do not depend on that, but the scan lines must be
+// cast onto the mesh in the mesh's own frame.
+SE3d ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface, const std::vector<TimedPose>& frames);
+
+// The solution moved by G (its spline's control points and landmarks).
+JointResult inSurfaceFrame(JointResult joint, const SE3d& G);
+
+// The sparse map of `posed` with the joint keyframe poses and landmarks, to
+// mesh again.
+GeorefResult withJointMap(GeorefResult posed, const JointResult& joint);
+
+// calibration.yaml of a joint solution found in `round`: T_C_U and d with
+// their 1-sigma, the observability warnings and the solve's own.
+RunCalibration jointCalibration(const JointResult& joint, int round);
+
+}  // namespace hsmap

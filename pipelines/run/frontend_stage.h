@@ -1,0 +1,10 @@
+#pragma once
+// The frontend stage: the RGB frames -> RUN/frontend/ (docs/FRONTEND.md).
+
+#include "pipelines/run/stage_context.h"
+
+namespace hsmap {
+
+void runFrontendStage(const StageContext& context);
+
+}  // namespace hsmap

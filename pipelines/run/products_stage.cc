@@ -1,0 +1,74 @@
+#include "pipelines/run/products_stage.h"
+
+#include <chrono>
+#include <future>
+#include <ostream>
+#include <sstream>
+#include <string>
+
+#include "core/geometry/utm_projection.h"
+#include "core/io/results_folder.h"
+#include "core/raycast/mesh_ray_caster.h"
+#include "core/survey/pose_tables.h"
+#include "core/util/stage_timer.h"
+#include "pipelines/products/product_casting.h"
+#include "pipelines/products/stacked_products.h"
+
+namespace hsmap {
+
+namespace fs = std::filesystem;
+
+void runProductsStage(const StageContext& context, const ProductsStageOptions& options) {
+  options.validate();
+  std::ostream& out = context.out;
+  const Survey& survey = context.survey;
+  if (!survey.cube) throw std::invalid_argument("the survey's UHI cube is not open");
+  const fs::path folder = context.run / "hyperspectral";
+  if (context.variant == Variant::stacked) {
+    const StackedReport report = writeStackedProducts(*survey.cube, survey.wavelengths_nm, folder, out);
+    out << report.summary() << "\n";
+    out << "wrote " << report.ortho_hdr.string() << ", " << report.quicklook_png.string() << ", "
+        << report.ancillary_hdr.string() << " (no GeoTIFF and no RGB ortho-image: no map position)\n";
+    return;
+  }
+  const fs::path lines_csv = context.run / results_paths::trajectory_uhi_lines;
+  const fs::path mesh_ply = context.run / results_paths::mesh_ply;
+  out << "products: scan line poses from " << lines_csv.string() << ", surface from " << mesh_ply.string()
+      << "\n";
+  const std::vector<LinePose> line_poses = readLinePoseTable(lines_csv);
+  const auto mesh_start = std::chrono::steady_clock::now();
+  const PlyMesh ply = readSurfaceMesh(mesh_ply);
+  const double read_mesh_s = secondsSince(mesh_start);
+  const MeshRayCaster mesh(ply.vertices, ply.triangles);
+  out << "products: mesh read and its BVH built in " << secondsSince(mesh_start) << " s ("
+      << ply.triangles.size() << " triangles; read " << read_mesh_s << " s)\n";
+  const UtmProjection projection(survey.origin);
+
+  // The RGB ortho-image (on the cast's grid) is rendered alongside the
+  // tiles, which wait on the disk; its log follows the cast's.
+  std::future<std::string> rgb_ortho;
+  auto startRgbOrtho = [&](const OrthoGrid& grid) {
+    rgb_ortho = std::async(std::launch::async, [&, grid] {
+      std::ostringstream log;
+      writeRgbOrthoImage(ply, mesh, grid, projection, context.run / "map", options.geotiff, log);
+      return log.str();
+    });
+  };
+  const HyperspectralReport report = castHyperspectralOrtho(survey, line_poses, mesh, projection, folder,
+                                                            options.ortho_pixel_m, options.geotiff, out,
+                                                            startRgbOrtho);
+  if (options.points) writePointCloud(survey, line_poses, mesh, folder / "points.ply", options.point_cell_m, out);
+  out << "wrote " << report.ortho_hdr.string();
+  for (const fs::path& path : {report.ortho_tif, report.quicklook_png, report.ancillary_hdr}) {
+    if (!path.empty()) out << ", " << path.string();
+  }
+  if (options.points) out << ", " << (folder / "points.ply").string();
+  out << "\n";
+  if (rgb_ortho.valid()) {
+    out << rgb_ortho.get();
+  } else {
+    writeRgbOrthoImage(ply, mesh, report.grid, projection, context.run / "map", options.geotiff, out);
+  }
+}
+
+}  // namespace hsmap
