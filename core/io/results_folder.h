@@ -22,6 +22,7 @@ inline constexpr const char* calibration_yaml = "calibration.yaml";
 inline constexpr const char* sparse_ply = "map/sparse.ply";
 inline constexpr const char* mesh_ply = "map/mesh.ply";
 inline constexpr const char* ortho_hdr = "hyperspectral/ortho.hdr";
+inline constexpr const char* ancillary_hdr = "hyperspectral/ancillary.hdr";
 inline constexpr const char* ortho_rgb_png = "hyperspectral/ortho_rgb.png";
 inline constexpr const char* report_dir = "report";
 inline constexpr const char* metrics_json = "metrics.json";

@@ -1,13 +1,21 @@
 #include "pipelines/evaluate/evaluate_run.h"
 
+#include <stdexcept>
+
+#include "core/geometry/pushbroom_camera.h"
 #include "core/io/atomic_file.h"
+#include "core/io/ply_io.h"
 #include "core/io/results_folder.h"
+#include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/number_text.h"
+#include "core/util/input_error.h"
 #include "pipelines/evaluate/calibration_metrics.h"
 #include "pipelines/evaluate/ins_floor.h"
 #include "pipelines/evaluate/mesh_metrics.h"
 #include "pipelines/evaluate/ortho_metrics.h"
+#include "pipelines/evaluate/ortho_pixel_error.h"
 #include "pipelines/evaluate/trajectory_metrics.h"
+#include "pipelines/evaluate/view_distance.h"
 
 namespace hsmap {
 
@@ -25,14 +33,31 @@ EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
         &metrics.mesh_completeness, &metrics.mesh_accuracy_attitude_aligned_m,
         &metrics.mesh_completeness_attitude_aligned, &metrics.alignment_cross_track_spread_m,
         &metrics.ortho_mean_shift_m, &metrics.ortho_registration_rmse_m, &metrics.ortho_scale_error,
-        &metrics.ortho_sam_deg, &metrics.ortho_coverage, &metrics.ins_floor_rgb_ate_m,
-        &metrics.ins_floor_scale_error}) {
+        &metrics.ortho_sam_deg, &metrics.ortho_coverage, &metrics.ortho_pixel_error_m,
+        &metrics.ortho_pixel_error_abs_m, &metrics.ins_floor_rgb_ate_m, &metrics.ins_floor_scale_error,
+        &metrics.alignment_view_distance_m, &metrics.uhi_position_rmse_positions_aligned_m,
+        &metrics.uhi_rotation_rmse_positions_aligned_deg, &metrics.mesh_accuracy_positions_aligned_m,
+        &metrics.mesh_completeness_positions_aligned}) {
     *m = none;
   }
   for (const StageRecord& stage : inputs.run.stages) metrics.timings_s.emplace_back(stage.name, stage.time_s);
   metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
   metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
   return metrics;
+}
+
+// A ray caster on truth/scene.ply (the PLY itself is freed on return: the
+// caster keeps its own copy).
+MeshRayCaster trueSceneCaster(const std::filesystem::path& scene_path) {
+  const PlyMesh scene = readPly(scene_path);
+  if (scene.triangles.empty()) {
+    throw InputError(scene_path, "", "has no triangles: expected the true surface as a triangle mesh");
+  }
+  try {
+    return MeshRayCaster(scene.vertices, scene.triangles);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(scene_path, "", std::string("not a usable true surface: ") + e.what());
+  }
 }
 
 }  // namespace
@@ -48,14 +73,32 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   for (const TruthLinePose& pose : inputs.truth.uhi_poses) {
     lines_true.push_back({pose.line, pose.t, pose.T_W_U});
   }
-  const TrajectoryMetrics trajectory =
-      computeTrajectoryMetrics(inputs.frames, frames_true, inputs.lines, lines_true);
+  std::vector<SE3d> T_W_U_true;
+  for (const LinePose& pose : lines_true) T_W_U_true.push_back(pose.T);
+
+  // The rays on the true surface: the view distance of the frames' view
+  // Sim(3) and the ortho pixels' true seen points. The caster (Embree's BVH)
+  // is freed before the mesh metrics build their distance trees (memory).
+  TrajectoryMetrics trajectory;
+  OrthoPixelError pixel_error;
+  {
+    const MeshRayCaster true_scene = trueSceneCaster(inputs.truth.scene_path);
+    const ViewDistance view_distance = medianViewDistance(frames_true, true_scene);
+    trajectory = computeTrajectoryMetrics(inputs.frames, frames_true, inputs.lines, lines_true,
+                                          view_distance.h_m);
+    pixel_error = measureRunOrthoPixelError(
+        inputs.run_folder / results_paths::ortho_hdr, inputs.run_folder / results_paths::ancillary_hdr,
+        T_W_U_true, PushbroomCamera(inputs.truth.calibration.uhi_camera), true_scene, inputs.survey.origin);
+  }
   metrics.rgb_ate_m = trajectory.rgb_ate_m;
   metrics.rgb_ate_aligned_m = trajectory.rgb_ate_aligned_m;
   metrics.rgb_scale_error = trajectory.rgb_scale_error;
   metrics.uhi_position_rmse_m = trajectory.uhi_position_rmse_m;
   metrics.uhi_rotation_rmse_deg = trajectory.uhi_rotation_rmse_deg;
   metrics.alignment_cross_track_spread_m = trajectory.alignment_cross_track_spread_m;
+  metrics.alignment_view_distance_m = trajectory.alignment_view_distance_m;
+  metrics.uhi_position_rmse_positions_aligned_m = trajectory.uhi_position_rmse_positions_aligned_m;
+  metrics.uhi_rotation_rmse_positions_aligned_deg = trajectory.uhi_rotation_rmse_positions_aligned_deg;
 
   const CalibrationErrors calibration =
       compareCalibration(inputs.calibration, inputs.truth.calibration);
@@ -66,16 +109,20 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
 
   // The mesh is judged in the frame the frames' alignment defines; without
   // that alignment there is no frame to judge it in, for the same reason.
-  // The contract's alignment first, then the attitude-anchored one (extension).
+  // The contract's view Sim(3) first, then the positions-only and the
+  // attitude-anchored alignments (extensions).
   const std::vector<MeshMetrics> mesh = measureRunMesh(
       inputs.run_folder / results_paths::mesh_ply,
-      {{trajectory.S_true_est, trajectory.why_no_alignment},
+      {{trajectory.S_true_est_view, trajectory.why_no_view_alignment},
+       {trajectory.S_true_est, trajectory.why_no_alignment},
        {trajectory.S_true_est_attitude, trajectory.why_no_attitude_alignment}},
       inputs.truth.scene_path, inputs.truth.reflectance_header_path);
   metrics.mesh_accuracy_m = mesh[0].mesh_accuracy_m;
   metrics.mesh_completeness = mesh[0].mesh_completeness;
-  metrics.mesh_accuracy_attitude_aligned_m = mesh[1].mesh_accuracy_m;
-  metrics.mesh_completeness_attitude_aligned = mesh[1].mesh_completeness;
+  metrics.mesh_accuracy_positions_aligned_m = mesh[1].mesh_accuracy_m;
+  metrics.mesh_completeness_positions_aligned = mesh[1].mesh_completeness;
+  metrics.mesh_accuracy_attitude_aligned_m = mesh[2].mesh_accuracy_m;
+  metrics.mesh_completeness_attitude_aligned = mesh[2].mesh_completeness;
 
   // The ortho-image as placed (its geo-referencing is one of its metrics),
   // in the survey's UTM zone through W's origin.
@@ -92,6 +139,9 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
     metrics.ortho_patches = summary.substr(0, summary.find('\n'));
   }
   metrics.ortho_matches = ortho.matches;
+  metrics.ortho_pixel_error_m = pixel_error.ortho_pixel_error_m;
+  metrics.ortho_pixel_error_abs_m = pixel_error.ortho_pixel_error_abs_m;
+  if (pixel_error.patch_pixels > 0) metrics.ortho_pixel_counts = pixel_error.summary();
 
   for (const StageRecord& stage : inputs.run.stages) {
     metrics.timings_s.emplace_back(stage.name, stage.time_s);

@@ -3,15 +3,17 @@
 // survey's ground truth (docs/EVALUATE.md).
 //
 // evaluateRun() computes every metric of metrics.json from inputs already
-// loaded and checked (evaluation_inputs.h): trajectory metrics
+// loaded and checked (evaluation_inputs.h): the view distance of the frames'
+// view Sim(3) (view_distance.h, rays on truth/scene.ply), trajectory metrics
 // (trajectory_metrics.h), calibration errors (calibration_metrics.h), the
 // mesh metrics when the run has RUN/map/mesh.ply (mesh_metrics.h, with the
-// frames' alignment and, as an extension, with the attitude-anchored one),
-// the ortho-image metrics when the run has RUN/hyperspectral/ortho.hdr
-// (ortho_metrics.h, against truth/reflectance.hdr, in the UTM zone of the
-// survey origin); these two are the only ones that read truth/scene.ply and
-// truth/reflectance. Then timings and peak memory from run.yaml and the INS
-// floor (ins_floor.h).
+// frames' view Sim(3) and, as extensions, with the positions-only and the
+// attitude-anchored alignments), the ortho-image metrics when the run has
+// RUN/hyperspectral/ortho.hdr (ortho_metrics.h, against
+// truth/reflectance.hdr, in the UTM zone of the survey origin) and, with its
+// ancillary layer, the pixel error (ortho_pixel_error.h: the true line
+// poses, the true UHI camera and rays on truth/scene.ply). Then timings and
+// peak memory from run.yaml and the INS floor (ins_floor.h).
 //
 // evaluateRunFolder() is the whole command: load, compute, write
 // RUN/metrics.json atomically, and the ortho-image's matched patches to

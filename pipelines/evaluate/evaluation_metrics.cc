@@ -54,7 +54,7 @@ std::string padded(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
 
-constexpr std::size_t kKeyWidth = 36;
+constexpr std::size_t kKeyWidth = 40;  // the longest key, uhi_rotation_rmse_positions_aligned_deg, and a space
 constexpr std::size_t kValueWidth = 14;
 constexpr std::size_t kUnitWidth = 6;
 constexpr std::size_t kFloorWidth = 14;
@@ -68,11 +68,19 @@ const MetricValue* floorBeside(const M& metrics, const std::string& key) {
 
 bool isFloorRow(const std::string& key) { return key.rfind("ins_floor_", 0) == 0; }
 
-// Extension rows the table shows right under mesh_completeness, beside the
-// contract's mesh rows they qualify.
-bool isShownUnderMesh(const std::string& key) {
-  return key == "alignment_cross_track_spread_m" || key == "mesh_accuracy_attitude_aligned_m" ||
-         key == "mesh_completeness_attitude_aligned";
+// Extension rows the table shows right under the contract row they qualify
+// (nullptr: in the file's order).
+const char* shownUnder(const std::string& key) {
+  if (key == "alignment_view_distance_m" || key == "uhi_position_rmse_positions_aligned_m" ||
+      key == "uhi_rotation_rmse_positions_aligned_deg") {
+    return "uhi_rotation_rmse_deg";
+  }
+  if (key == "alignment_cross_track_spread_m" || key == "mesh_accuracy_positions_aligned_m" ||
+      key == "mesh_completeness_positions_aligned" || key == "mesh_accuracy_attitude_aligned_m" ||
+      key == "mesh_completeness_attitude_aligned") {
+    return "mesh_completeness";
+  }
+  return nullptr;
 }
 
 // A note on a row that has a value.
@@ -108,12 +116,19 @@ const std::vector<MetricRow>& metricRows() {
       {"ortho_scale_error", "", &M::ortho_scale_error},
       {"ortho_sam_deg", "deg", &M::ortho_sam_deg},
       {"ortho_coverage", "", &M::ortho_coverage},
+      {"ortho_pixel_error_m", "m", &M::ortho_pixel_error_m},
+      {"ortho_pixel_error_abs_m", "m", &M::ortho_pixel_error_abs_m},
       {"peak_rss_mb", "MiB", &M::peak_rss_mb},
       {"ins_floor_rgb_ate_m", "m", &M::ins_floor_rgb_ate_m},
       {"ins_floor_scale_error", "", &M::ins_floor_scale_error},
       {"alignment_cross_track_spread_m", "m", &M::alignment_cross_track_spread_m},
       {"mesh_accuracy_attitude_aligned_m", "m", &M::mesh_accuracy_attitude_aligned_m},
       {"mesh_completeness_attitude_aligned", "", &M::mesh_completeness_attitude_aligned},
+      {"alignment_view_distance_m", "m", &M::alignment_view_distance_m},
+      {"uhi_position_rmse_positions_aligned_m", "m", &M::uhi_position_rmse_positions_aligned_m},
+      {"uhi_rotation_rmse_positions_aligned_deg", "deg", &M::uhi_rotation_rmse_positions_aligned_deg},
+      {"mesh_accuracy_positions_aligned_m", "m", &M::mesh_accuracy_positions_aligned_m},
+      {"mesh_completeness_positions_aligned", "", &M::mesh_completeness_positions_aligned},
   };
   return rows;
 }
@@ -156,7 +171,7 @@ void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics) {
   for (const MetricRow& row : metricRows()) {
     const std::string key = row.key;
     if (isFloorRow(key)) continue;        // shown beside rgb_ate_m and rgb_scale_error
-    if (isShownUnderMesh(key)) continue;  // shown under mesh_completeness
+    if (shownUnder(key)) continue;        // shown under the row it qualifies
     if (key == "peak_rss_mb") {
       for (const auto& [stage, seconds] : metrics.timings_s) {
         out << trimmedRight(padded("timings_s." + stage, kKeyWidth) +
@@ -165,13 +180,15 @@ void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics) {
       }
     }
     printRow(row);
-    if (key == "mesh_completeness") {
-      for (const MetricRow& under : metricRows()) {
-        if (isShownUnderMesh(under.key)) printRow(under);
-      }
+    for (const MetricRow& under : metricRows()) {
+      const char* parent = shownUnder(under.key);
+      if (parent && key == parent) printRow(under);
     }
     if (key == "ortho_coverage" && !metrics.ortho_patches.empty()) {
       out << "  " << metrics.ortho_patches << "\n";
+    }
+    if (key == "ortho_pixel_error_abs_m" && !metrics.ortho_pixel_counts.empty()) {
+      out << "  " << metrics.ortho_pixel_counts << "\n";
     }
   }
 }

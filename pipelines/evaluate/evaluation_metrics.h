@@ -1,15 +1,19 @@
 #pragma once
 // EvaluationMetrics: the figures of RUN/metrics.json (DATASET.md's keys, in
 // its order, plus hsmap's extensions: the INS floor, the attitude-aligned
-// mesh metrics and the frames' cross-track spread), and their two renderings:
+// mesh metrics, the frames' cross-track spread, the view distance of the
+// view Sim(3) and the positions-aligned uhi and mesh metrics), and their two
+// renderings:
 //   - metricsJson(): the file. Every key present, `null` where a metric does
 //     not apply, numbers in shortest round-trip form (number_text.h), so a
 //     script reads back exactly what was computed;
 //   - printMetricsTable(): the same figures for people: metric, value, unit,
-//     the INS floor beside rgb_ate_m and rgb_scale_error, the attitude-aligned
-//     mesh rows and the cross-track spread under the mesh rows (with a note
-//     when the spread leaves the contract's alignment weakly conditioned),
-//     the ortho-image's patch counts under its rows, and the reason of every
+//     the INS floor beside rgb_ate_m and rgb_scale_error, the view distance
+//     and the positions-aligned uhi rows under the uhi rows, the
+//     positions- and attitude-aligned mesh rows and the cross-track spread
+//     under the mesh rows (with a note when the spread leaves the positions
+//     weakly conditioned), the ortho-image's patch counts under its rows and
+//     the pixel error's counts under its own, and the reason of every
 //     missing value.
 //
 // metricRows() lists the scalar metrics once, so the file, the table and any
@@ -46,6 +50,13 @@ struct EvaluationMetrics {
   MetricValue ortho_scale_error;
   MetricValue ortho_sam_deg;
   MetricValue ortho_coverage;
+  // Matching-free pixel error (ortho_pixel_error.h): measured when the run
+  // has RUN/hyperspectral/ortho.hdr and its ancillary layer.
+  MetricValue ortho_pixel_error_m;
+  MetricValue ortho_pixel_error_abs_m;
+  // For the table only (not in metrics.json): the pixel error's counts
+  // (OrthoPixelError::summary()), empty when it was not measured.
+  std::string ortho_pixel_counts;
   // For the table only (not in metrics.json): the ortho-image's patch counts
   // (OrthoMetrics::summary()'s first line), empty when it was not measured.
   std::string ortho_patches;
@@ -65,6 +76,14 @@ struct EvaluationMetrics {
   MetricValue alignment_cross_track_spread_m;
   MetricValue mesh_accuracy_attitude_aligned_m;
   MetricValue mesh_completeness_attitude_aligned;
+  // Extension (docs/EVALUATE.md, "The view Sim(3)"): the view distance h of
+  // the frames' view Sim(3), and the uhi and mesh metrics under the frame
+  // positions' Umeyama alignment (that of rgb_ate_aligned_m) instead.
+  MetricValue alignment_view_distance_m;
+  MetricValue uhi_position_rmse_positions_aligned_m;
+  MetricValue uhi_rotation_rmse_positions_aligned_deg;
+  MetricValue mesh_accuracy_positions_aligned_m;
+  MetricValue mesh_completeness_positions_aligned;
 };
 
 // Below this cross-track spread of the frames (m) the table says that the

@@ -2,6 +2,7 @@
 
 #include "core/io/envi_ignore_value.h"
 #include "pipelines/evaluate/band_limited_phase_correlation.h"
+#include "pipelines/evaluate/ortho_raster_grid.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -33,75 +34,6 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // The W -> UTM map is evaluated exactly every kNodeStep truth pixels.
 constexpr int kNodeStep = 16;
-
-// Pixel centres of a north-up raster (header comment): x grows east with the
-// column, y north against the row. (x, y) is (east, north) in W for the
-// truth and (easting, northing) for the produced raster.
-struct RasterGrid {
-  double x0 = 0, y0 = 0;  // centre of pixel (0, 0)
-  double px = 1, py = 1;
-  int rows = 0, cols = 0;
-
-  Eigen::Vector2d centre(double row, double col) const { return {x0 + col * px, y0 - row * py}; }
-  // Continuous (col, row) of a map position.
-  Eigen::Vector2d pixel(const Eigen::Vector2d& xy) const {
-    return {(xy.x() - x0) / px, (y0 - xy.y()) / py};
-  }
-};
-
-RasterGrid gridOf(const EnviMapInfo& map, int rows, int cols) {
-  RasterGrid grid;
-  grid.px = map.pixel_size_x;
-  grid.py = map.pixel_size_y;
-  grid.x0 = map.easting + (1.5 - map.reference_pixel_x) * map.pixel_size_x;
-  grid.y0 = map.northing - (1.5 - map.reference_pixel_y) * map.pixel_size_y;
-  grid.rows = rows;
-  grid.cols = cols;
-  return grid;
-}
-
-const EnviMapInfo& requireMapInfo(const EnviHeader& header, const std::filesystem::path& hdr,
-                                  const char* expected) {
-  if (!header.map_info) {
-    throw InputError(hdr, InputError::atKey("map info"),
-                     std::string("missing: expected map info = ") + expected);
-  }
-  const EnviMapInfo& map = *header.map_info;
-  if (!(map.pixel_size_x > 0.0) || !(map.pixel_size_y > 0.0)) {
-    throw InputError(hdr, InputError::atKey("map info"), "expected positive pixel sizes");
-  }
-  return map;
-}
-
-RasterGrid truthGrid(const EnviReader& reader) {
-  const EnviMapInfo& map = requireMapInfo(reader.header(), reader.headerPath(),
-                                          "{Arbitrary, 1, 1, E, N, px, px, units=Meters} in W");
-  if (map.projection != "Arbitrary") {
-    throw InputError(reader.headerPath(), InputError::atKey("map info"),
-                     "projection " + map.projection +
-                         ": expected Arbitrary (east and north in the survey's local W)");
-  }
-  return gridOf(map, reader.lines(), reader.samples());
-}
-
-RasterGrid producedGrid(const EnviReader& reader, const UtmProjection& utm) {
-  const EnviMapInfo& map = requireMapInfo(
-      reader.header(), reader.headerPath(),
-      "{UTM, 1, 1, easting, northing, px, px, zone, North|South, WGS-84, units=Meters}");
-  const std::string hemisphere = utm.northernHemisphere() ? "North" : "South";
-  if (map.projection != "UTM") {
-    throw InputError(reader.headerPath(), InputError::atKey("map info"),
-                     "projection " + map.projection + ": expected UTM (zone " +
-                         std::to_string(utm.zone()) + " " + hemisphere + ", the survey origin's)");
-  }
-  if (map.zone != utm.zone() || map.north != utm.northernHemisphere()) {
-    throw InputError(reader.headerPath(), InputError::atKey("map info"),
-                     "UTM zone " + std::to_string(map.zone) + (map.north ? " North" : " South") +
-                         ": expected zone " + std::to_string(utm.zone()) + " " + hemisphere +
-                         ", the survey origin's");
-  }
-  return gridOf(map, reader.lines(), reader.samples());
-}
 
 bool validValue(float v, const std::optional<float>& ignore) {
   return std::isfinite(v) && !(ignore && v == *ignore);
@@ -512,8 +444,8 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
   const UtmProjection utm(origin);
   const EnviReader truth_reader(truth_hdr);
   const EnviReader produced_reader(produced_hdr);
-  const RasterGrid truth = truthGrid(truth_reader);
-  const RasterGrid produced = producedGrid(produced_reader, utm);
+  const RasterGrid truth = localRasterGrid(truth_reader.header(), truth_reader.headerPath());
+  const RasterGrid produced = utmRasterGrid(produced_reader.header(), produced_reader.headerPath(), utm);
   const std::optional<float> ignore =
       enviDataIgnoreValue(produced_reader.header(), produced_reader.headerPath());
 

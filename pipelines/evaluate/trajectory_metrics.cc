@@ -8,12 +8,38 @@
 
 #include "core/geometry/rotation_anchored_alignment.h"
 #include "core/geometry/so3.h"
+#include "pipelines/evaluate/view_alignment.h"
 
 namespace hsmap {
 namespace {
 
 double rms(double sum_of_squares, std::size_t count) {
   return std::sqrt(sum_of_squares / static_cast<double>(count));
+}
+
+struct LineErrors {
+  MetricValue position_rmse_m;
+  MetricValue rotation_rmse_deg;
+};
+
+// Every scan line's pose mapped by S_true_est against the truth, or `why`
+// when there is no S_true_est.
+LineErrors lineErrors(const std::optional<Sim3>& S_true_est, const std::string& why,
+                      const std::vector<LinePose>& lines_est,
+                      const std::vector<LinePose>& lines_true) {
+  if (!S_true_est) return {MetricValue::missing(why), MetricValue::missing(why)};
+  if (lines_est.empty()) return {MetricValue::missing("no scan lines"), MetricValue::missing("no scan lines")};
+  double position_sum = 0.0;
+  double angle_sum = 0.0;
+  for (std::size_t k = 0; k < lines_est.size(); ++k) {
+    // transformPose maps the UHI centre by s R p + t and turns its axes by R.
+    const SE3d T_true_U = S_true_est->transformPose(lines_est[k].T);
+    position_sum += (T_true_U.t - lines_true[k].T.t).squaredNorm();
+    const double angle = rotationAngleDeg(lines_true[k].T.q, T_true_U.q);
+    angle_sum += angle * angle;
+  }
+  return {MetricValue::of(rms(position_sum, lines_est.size())),
+          MetricValue::of(rms(angle_sum, lines_est.size()))};
 }
 
 }  // namespace
@@ -57,7 +83,8 @@ double crossTrackSpread(const std::vector<Eigen::Vector3d>& positions) {
 TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_est,
                                            const std::vector<TimedPose>& frames_true,
                                            const std::vector<LinePose>& lines_est,
-                                           const std::vector<LinePose>& lines_true) {
+                                           const std::vector<LinePose>& lines_true,
+                                           const MetricValue& view_distance_m) {
   if (frames_est.size() != frames_true.size() || frames_est.empty() ||
       lines_est.size() != lines_true.size()) {
     throw std::invalid_argument(
@@ -83,40 +110,42 @@ TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_
         std::string("no attitude-anchored alignment of the frames: ") + e.what();
   }
 
+  metrics.alignment_view_distance_m = view_distance_m;
+  if (!view_distance_m.value) {
+    metrics.why_no_view_alignment = "no view alignment of the frames: " + view_distance_m.reason;
+  } else {
+    try {
+      const ViewAlignment view = alignFramesByView(frames_est, frames_true, *view_distance_m.value);
+      metrics.S_true_est_view = view.S_true_est;
+      metrics.view_alignment_iterations = view.iterations;
+    } catch (const std::invalid_argument& e) {
+      metrics.why_no_view_alignment = std::string("no view alignment of the frames: ") + e.what();
+    }
+  }
+  const LineErrors view =
+      lineErrors(metrics.S_true_est_view, metrics.why_no_view_alignment, lines_est, lines_true);
+  metrics.uhi_position_rmse_m = view.position_rmse_m;
+  metrics.uhi_rotation_rmse_deg = view.rotation_rmse_deg;
+
   try {
     metrics.S_true_est = alignUmeyama(p_est, p_true);
   } catch (const std::invalid_argument& e) {
-    const std::string why =
+    metrics.why_no_alignment =
         std::string("no similarity alignment of the frame positions: ") + e.what();
-    metrics.why_no_alignment = why;
-    metrics.rgb_ate_aligned_m = MetricValue::missing(why);
-    metrics.rgb_scale_error = MetricValue::missing(why);
-    metrics.uhi_position_rmse_m = MetricValue::missing(why);
-    metrics.uhi_rotation_rmse_deg = MetricValue::missing(why);
-    return metrics;
+    metrics.rgb_ate_aligned_m = MetricValue::missing(metrics.why_no_alignment);
+    metrics.rgb_scale_error = MetricValue::missing(metrics.why_no_alignment);
   }
-  const Sim3& S = *metrics.S_true_est;
-  sum = 0.0;
-  for (std::size_t i = 0; i < p_est.size(); ++i) sum += (S.apply(p_est[i]) - p_true[i]).squaredNorm();
-  metrics.rgb_ate_aligned_m = MetricValue::of(rms(sum, p_est.size()));
-  metrics.rgb_scale_error = MetricValue::of(std::abs(S.scale() - 1.0));
-
-  if (lines_est.empty()) {
-    metrics.uhi_position_rmse_m = MetricValue::missing("no scan lines");
-    metrics.uhi_rotation_rmse_deg = MetricValue::missing("no scan lines");
-    return metrics;
+  if (metrics.S_true_est) {
+    const Sim3& S = *metrics.S_true_est;
+    sum = 0.0;
+    for (std::size_t i = 0; i < p_est.size(); ++i) sum += (S.apply(p_est[i]) - p_true[i]).squaredNorm();
+    metrics.rgb_ate_aligned_m = MetricValue::of(rms(sum, p_est.size()));
+    metrics.rgb_scale_error = MetricValue::of(std::abs(S.scale() - 1.0));
   }
-  double position_sum = 0.0;
-  double angle_sum = 0.0;
-  for (std::size_t k = 0; k < lines_est.size(); ++k) {
-    // transformPose maps the UHI centre by s R p + t and turns its axes by R.
-    const SE3d T_true_U = S.transformPose(lines_est[k].T);
-    position_sum += (T_true_U.t - lines_true[k].T.t).squaredNorm();
-    const double angle = rotationAngleDeg(lines_true[k].T.q, T_true_U.q);
-    angle_sum += angle * angle;
-  }
-  metrics.uhi_position_rmse_m = MetricValue::of(rms(position_sum, lines_est.size()));
-  metrics.uhi_rotation_rmse_deg = MetricValue::of(rms(angle_sum, lines_est.size()));
+  const LineErrors positions =
+      lineErrors(metrics.S_true_est, metrics.why_no_alignment, lines_est, lines_true);
+  metrics.uhi_position_rmse_positions_aligned_m = positions.position_rmse_m;
+  metrics.uhi_rotation_rmse_positions_aligned_deg = positions.rotation_rmse_deg;
   return metrics;
 }
 

@@ -5,17 +5,30 @@
 //
 //   rgb_ate_m            sqrt(mean_i |p_W_C_est(i) - p_W_C_true(i)|^2): no alignment, so
 //                        geo-referencing errors (placement and scale) count in full.
-//   rgb_ate_aligned_m    the same after the best similarity S_true_est (Umeyama:
-//                        min sum_i |p_true(i) - (s R p_est(i) + t)|^2): the shape alone.
+//   rgb_ate_aligned_m    the same after the best similarity S_true_est of the frame
+//                        POSITIONS (Umeyama: min sum_i |p_true(i) - (s R p_est(i) + t)|^2):
+//                        the shape alone.
 //   rgb_scale_error      |s - 1| of that similarity.
-//   uhi_position_rmse_m  RMS over scan lines of |S p_W_U_est(k) - p_W_U_true(k)|, with the
-//                        frames' S (not a new fit: the UHI poses are judged in the frame
-//                        that the RGB trajectory defines, beyond geo-referencing).
-//   uhi_rotation_rmse_deg  RMS over scan lines of the angle of R_true(k)^-1 R_S R_est(k).
+//   uhi_position_rmse_m  RMS over scan lines of |S_v p_W_U_est(k) - p_W_U_true(k)|, with the
+//                        frames' VIEW Sim(3) S_v (view_alignment.h: Umeyama over each
+//                        frame's camera centre and its view point h along its optical
+//                        axis; not a new fit on the lines: the UHI poses are judged in
+//                        the frame that the RGB trajectory defines, beyond
+//                        geo-referencing).
+//   uhi_rotation_rmse_deg  RMS over scan lines of the angle of R_true(k)^-1 R_v R_est(k).
 //
 // When the estimated frame positions are degenerate (all equal, or on one
-// line to within rounding) the similarity is undetermined: the four
-// alignment metrics are then missing, with alignUmeyama's reason.
+// line to within rounding) the positions-only similarity is undetermined:
+// rgb_ate_aligned_m and rgb_scale_error are then missing, with alignUmeyama's
+// reason. The view Sim(3) is not (its view points leave the line) unless the
+// centres all coincide or the view distance h is missing (no true frame sees
+// truth/scene.ply): the two uhi_* metrics are then missing with the reason.
+//
+// Positions-aligned diagnostics (an hsmap extension, docs/EVALUATE.md):
+//   uhi_position_rmse_positions_aligned_m, uhi_rotation_rmse_positions_aligned_deg
+//                        the two uhi_* metrics with the positions-only S_true_est
+//                        instead of the view Sim(3) (what they were before the
+//                        contract's view alignment).
 //
 // Attitude-anchored alignment (an hsmap extension, docs/EVALUATE.md, "The
 // attitude-aligned mesh metrics"). Along a nearly straight track the frame
@@ -52,10 +65,22 @@ struct TrajectoryMetrics {
   MetricValue rgb_ate_m;
   MetricValue rgb_ate_aligned_m;
   MetricValue rgb_scale_error;
-  MetricValue uhi_position_rmse_m;
-  MetricValue uhi_rotation_rmse_deg;
-  std::optional<Sim3> S_true_est;  // the frames' alignment, when it exists
+  MetricValue uhi_position_rmse_m;    // under the view Sim(3)
+  MetricValue uhi_rotation_rmse_deg;  // under the view Sim(3)
+  std::optional<Sim3> S_true_est;  // the frame positions' alignment, when it exists
   std::string why_no_alignment;    // why S_true_est is absent (empty when present)
+
+  // The contract's view Sim(3) (view_alignment.h), the view distance h it
+  // used (alignment_view_distance_m, an extension key) and the Umeyama fits
+  // it took.
+  std::optional<Sim3> S_true_est_view;
+  std::string why_no_view_alignment;  // empty when S_true_est_view is present
+  MetricValue alignment_view_distance_m;
+  int view_alignment_iterations = 0;
+
+  // Extension: the uhi_* metrics under the positions-only S_true_est.
+  MetricValue uhi_position_rmse_positions_aligned_m;
+  MetricValue uhi_rotation_rmse_positions_aligned_deg;
 
   // Extension (header comment): the alignment with the frames' orientations'
   // rotation, and how well the positions alone condition S_true_est.
@@ -65,10 +90,14 @@ struct TrajectoryMetrics {
 };
 
 // Frames and lines are paired by index; sizes must agree (std::invalid_argument).
+// `view_distance_m` is h (view_distance.h: medianViewDistance over the true
+// frames), or the reason there is none (the view metrics are then missing
+// with it).
 TrajectoryMetrics computeTrajectoryMetrics(const std::vector<TimedPose>& frames_est,
                                            const std::vector<TimedPose>& frames_true,
                                            const std::vector<LinePose>& lines_est,
-                                           const std::vector<LinePose>& lines_true);
+                                           const std::vector<LinePose>& lines_true,
+                                           const MetricValue& view_distance_m);
 
 // The attitude-anchored S_true_est_attitude of frames paired by index (header
 // comment). Throws std::invalid_argument with the reason when it is

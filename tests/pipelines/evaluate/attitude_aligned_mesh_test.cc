@@ -1,4 +1,5 @@
-// The mesh metrics under the frames' Umeyama alignment (the contract's) and
+// The mesh metrics under the frame positions' Umeyama alignment (the
+// extension *_positions_aligned; the contract's before its view Sim(3)) and
 // under the attitude-anchored one (the extension, trajectory_metrics.h), on a
 // straight transect like the `flat` preset's: 201 frames over 20 m along x
 // (north), their true positions scattered by only kTrackScatter across the
@@ -34,6 +35,8 @@ constexpr double kFrameSpacing = 0.1;   // m along x: a 20 m track
 constexpr double kTrackScatter = 0.005;  // m, std of the true positions across the track
 constexpr double kSeabedDown = 2.0;      // the cameras fly at down ~ 0
 constexpr double kSwathHalfWidth = 1.5;  // the produced mesh covers east [-1.5, 1.5] m
+// The cameras look ~2 m down at the seabed (h of the view Sim(3), not used here).
+const MetricValue kViewDistance = MetricValue::of(kSeabedDown);
 
 double value(const MetricValue& metric) {
   EXPECT_TRUE(metric.value.has_value()) << metric.reason;
@@ -74,14 +77,14 @@ std::vector<Eigen::Vector3d> footprintSamples() {
 
 struct BothAlignments {
   TrajectoryMetrics trajectory;
-  MeshMetrics contract;
+  MeshMetrics positions;
   MeshMetrics attitude;
 };
 
 BothAlignments measure(const std::vector<TimedPose>& frames_est,
                        const std::vector<TimedPose>& frames_true, const PlyMesh& mesh_est) {
   BothAlignments out;
-  out.trajectory = computeTrajectoryMetrics(frames_est, frames_true, {}, {});
+  out.trajectory = computeTrajectoryMetrics(frames_est, frames_true, {}, {}, kViewDistance);
   EXPECT_TRUE(out.trajectory.S_true_est.has_value()) << out.trajectory.why_no_alignment;
   EXPECT_TRUE(out.trajectory.S_true_est_attitude.has_value())
       << out.trajectory.why_no_attitude_alignment;
@@ -89,7 +92,7 @@ BothAlignments measure(const std::vector<TimedPose>& frames_est,
   const std::vector<MeshMetrics> mesh = computeMeshMetrics(
       mesh_est, {*out.trajectory.S_true_est, *out.trajectory.S_true_est_attitude}, trueScene(),
       footprintSamples(), 0.02);
-  out.contract = mesh.at(0);
+  out.positions = mesh.at(0);
   out.attitude = mesh.at(1);
   return out;
 }
@@ -103,7 +106,7 @@ double rollAboutTrack(const Sim3& S) {
 TEST(AttitudeAlignedMesh, TheCrossTrackSpreadIsTheTracksScatter) {
   std::mt19937 rng(7);
   const std::vector<TimedPose> frames = straightTrack(rng);
-  const TrajectoryMetrics trajectory = computeTrajectoryMetrics(frames, frames, {}, {});
+  const TrajectoryMetrics trajectory = computeTrajectoryMetrics(frames, frames, {}, {}, kViewDistance);
   // The larger of the two sample stds across the track (201 samples each:
   // ~5 % about kTrackScatter), not the 5.8 m along it.
   EXPECT_GT(value(trajectory.alignment_cross_track_spread_m), 0.9 * kTrackScatter);
@@ -127,13 +130,13 @@ TEST(AttitudeAlignedMesh, ASimilarityOfTheWholeEstimateCostsNothingUnderEitherAl
   const BothAlignments result = measure(frames_est, frames_true, mesh_est);
   // Exact data: both alignments recover S_est_true^-1 (to rounding, amplified
   // by the ~1e6 condition of Umeyama's 5 mm scatter against a 20 m track).
-  EXPECT_NEAR(value(result.contract.mesh_accuracy_m), 0.0, 1e-6);
+  EXPECT_NEAR(value(result.positions.mesh_accuracy_m), 0.0, 1e-6);
   EXPECT_NEAR(value(result.attitude.mesh_accuracy_m), 0.0, 1e-6);
-  EXPECT_EQ(value(result.contract.mesh_completeness), 1.0);
+  EXPECT_EQ(value(result.positions.mesh_completeness), 1.0);
   EXPECT_EQ(value(result.attitude.mesh_completeness), 1.0);
 }
 
-TEST(AttitudeAlignedMesh, MillimetresOfCameraNoiseAcrossTheTrackTiltOnlyTheContractAlignment) {
+TEST(AttitudeAlignedMesh, MillimetresOfCameraNoiseAcrossTheTrackTiltOnlyThePositionsAlignment) {
   std::mt19937 rng(13);
   const std::vector<TimedPose> frames_true = straightTrack(rng);
   // The map is exact; the cameras' positions are off by 2 mm (std) across
@@ -145,11 +148,11 @@ TEST(AttitudeAlignedMesh, MillimetresOfCameraNoiseAcrossTheTrackTiltOnlyTheContr
   const PlyMesh mesh_est = producedMeshInTrueW();
 
   const BothAlignments result = measure(frames_est, frames_true, mesh_est);
-  const double contract = value(result.contract.mesh_accuracy_m);
+  const double positions = value(result.positions.mesh_accuracy_m);
   const double attitude = value(result.attitude.mesh_accuracy_m);
-  std::cout << "mesh_accuracy_m " << contract << ", attitude-aligned " << attitude
-            << "; completeness " << value(result.contract.mesh_completeness)
-            << ", attitude-aligned " << value(result.attitude.mesh_completeness) << "; contract roll "
+  std::cout << "positions-aligned mesh_accuracy_m " << positions << ", attitude-aligned " << attitude
+            << "; completeness " << value(result.positions.mesh_completeness)
+            << ", attitude-aligned " << value(result.attitude.mesh_completeness) << "; positions roll "
             << rollAboutTrack(*result.trajectory.S_true_est) * 180.0 / M_PI << " deg\n";
 
   // Attitude-anchored: R is the identity exactly (exact orientations); the
@@ -158,7 +161,7 @@ TEST(AttitudeAlignedMesh, MillimetresOfCameraNoiseAcrossTheTrackTiltOnlyTheContr
   EXPECT_LT(attitude, 5e-4);
   EXPECT_EQ(value(result.attitude.mesh_completeness), 1.0);
 
-  // Contract: its roll about the track is off by ~sigma_e / (sigma_t
+  // Positions: its roll about the track is off by ~sigma_e / (sigma_t
   // sqrt(N)) ~ 1.6 degrees (header comment); here well beyond a tenth of one.
   const double roll = rollAboutTrack(*result.trajectory.S_true_est);
   EXPECT_GT(std::abs(roll), 0.1 * M_PI / 180.0);
@@ -166,12 +169,12 @@ TEST(AttitudeAlignedMesh, MillimetresOfCameraNoiseAcrossTheTrackTiltOnlyTheContr
   // by ~roll y, and the median of |y| over the mesh's columns (east -1.5 to
   // 1.5 m every 0.25 m) is 0.75 m; the rest (the noise's mean, as above) is
   // below a millimetre.
-  EXPECT_NEAR(contract, std::abs(roll) * 0.75, 0.1 * std::abs(roll) * 0.75 + 1e-3);
-  // So the contract metric measures the alignment, not the mesh: clearly worse.
-  EXPECT_GT(contract, 5.0 * attitude);
-  EXPECT_GT(contract, 2e-3);
+  EXPECT_NEAR(positions, std::abs(roll) * 0.75, 0.1 * std::abs(roll) * 0.75 + 1e-3);
+  // So the positions-aligned metric measures the alignment, not the mesh: clearly worse.
+  EXPECT_GT(positions, 5.0 * attitude);
+  EXPECT_GT(positions, 2e-3);
   // Samples more than 2 cm / |roll| off the track are no longer covered.
-  EXPECT_LT(value(result.contract.mesh_completeness),
+  EXPECT_LT(value(result.positions.mesh_completeness),
             std::min(1.0, 0.02 / std::abs(roll)) + 0.05);
 }
 
@@ -184,7 +187,7 @@ TEST(AttitudeAlignedMesh, WithoutOrientationsThatAgreeThereIsNoAttitudeAlignment
   std::vector<TimedPose> frames_est = frames_true;
   frames_est[1].T.q = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()));
   frames_est[0].T.q = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()));
-  const TrajectoryMetrics trajectory = computeTrajectoryMetrics(frames_est, frames_true, {}, {});
+  const TrajectoryMetrics trajectory = computeTrajectoryMetrics(frames_est, frames_true, {}, {}, kViewDistance);
   EXPECT_FALSE(trajectory.S_true_est_attitude.has_value());
   EXPECT_NE(trajectory.why_no_attitude_alignment.find("no attitude-anchored alignment"),
             std::string::npos)

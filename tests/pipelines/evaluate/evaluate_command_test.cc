@@ -36,7 +36,7 @@ TEST_F(EvaluateCommandTest, WritesMetricsJsonAndPrintsTheTable) {
   EXPECT_NE(json.find("\"timings_s\": {\"frontend\": 12.5, \"georef\": 3.25, \"total\": 15.75},"),
             std::string::npos);
   EXPECT_NE(json.find("\"mesh_accuracy_m\": null,"), std::string::npos);
-  EXPECT_NE(result.out.find("rgb_ate_m                           0             m     "),
+  EXPECT_NE(result.out.find("rgb_ate_m                               0             m     "),
             std::string::npos)
       << result.out;
   EXPECT_NE(result.out.find("wrote " + (fixture_.run() / "metrics.json").string()),

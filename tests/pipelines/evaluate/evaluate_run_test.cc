@@ -38,6 +38,12 @@ TEST_F(EvaluateRunTest, ResultsEqualToTheTruthScoreZero) {
   EXPECT_NEAR(value(metrics.rgb_scale_error), 0.0, 1e-12);
   EXPECT_NEAR(value(metrics.uhi_position_rmse_m), 0.0, 1e-12);
   EXPECT_NEAR(value(metrics.uhi_rotation_rmse_deg), 0.0, 1e-9);
+  EXPECT_NEAR(value(metrics.uhi_position_rmse_positions_aligned_m), 0.0, 1e-12);
+  EXPECT_NEAR(value(metrics.uhi_rotation_rmse_positions_aligned_deg), 0.0, 1e-9);
+  // h: the cameras fly ~1.7 m above the flat seabed at down 22, tilted by
+  // a few degrees at most.
+  EXPECT_GT(value(metrics.alignment_view_distance_m), 1.6);
+  EXPECT_LT(value(metrics.alignment_view_distance_m), 1.8);
   EXPECT_EQ(value(metrics.extrinsic_rotation_error_deg), 0.0);
   EXPECT_EQ(value(metrics.extrinsic_translation_error_m), 0.0);
   EXPECT_EQ(value(metrics.time_offset_error_s), 0.0);
@@ -46,7 +52,8 @@ TEST_F(EvaluateRunTest, ResultsEqualToTheTruthScoreZero) {
   EXPECT_NEAR(value(metrics.ins_floor_scale_error), 0.0, 1e-8);
   // Not measurable yet, and saying why.
   for (const MetricValue* missing : {&metrics.mesh_accuracy_m, &metrics.mesh_completeness,
-                                     &metrics.ortho_mean_shift_m, &metrics.ortho_coverage}) {
+                                     &metrics.ortho_mean_shift_m, &metrics.ortho_coverage,
+                                     &metrics.ortho_pixel_error_m, &metrics.ortho_pixel_error_abs_m}) {
     EXPECT_FALSE(missing->value.has_value());
     EXPECT_FALSE(missing->reason.empty());
   }
@@ -90,8 +97,25 @@ TEST_F(EvaluateRunTest, ARotatedAndScaledTrajectoryHasItsScaleErrorAndAPerfectSh
   EXPECT_NEAR(value(metrics.rgb_ate_m), std::sqrt(sum / frames.size()), 1e-12);
   EXPECT_NEAR(value(metrics.rgb_scale_error), 1.0 - 1.0 / 1.05, 1e-9);
   EXPECT_NEAR(value(metrics.rgb_ate_aligned_m), 0.0, 1e-9);
+  // Both alignments recover S_est_true^-1: the scan lines are exact.
   EXPECT_NEAR(value(metrics.uhi_position_rmse_m), 0.0, 1e-9);
   EXPECT_NEAR(value(metrics.uhi_rotation_rmse_deg), 0.0, 1e-6);
+  EXPECT_NEAR(value(metrics.uhi_position_rmse_positions_aligned_m), 0.0, 1e-9);
+  EXPECT_NEAR(value(metrics.uhi_rotation_rmse_positions_aligned_deg), 0.0, 1e-6);
+}
+
+// The scan-line poses of a run that used this time offset and extrinsic:
+// line k at its recorded time + d_est, T_W_U = T_W_B T_B_C T_C_U_est (what a
+// wrong d or T_C_U does to a run).
+std::vector<LinePose> linesWith(const EvaluationFixture& fixture, const RunCalibration& calibration) {
+  const SE3d T_B_C(fixture.config().ins.T_B_C.rotation, fixture.config().ins.T_B_C.translation_m);
+  const SE3d T_C_U(calibration.T_C_U.rotation, calibration.T_C_U.translation_m);
+  std::vector<LinePose> lines;
+  for (const LinePose& line : fixture.linesTrue()) {
+    const double t = line.t - testing::kTrueTimeOffset + calibration.time_offset_s;
+    lines.push_back({line.line, t, testing::trueBodyPose(t) * T_B_C * T_C_U});
+  }
+  return lines;
 }
 
 TEST_F(EvaluateRunTest, TimeOffsetAndExtrinsicErrorsAreThoseOfCalibrationYaml) {
@@ -102,13 +126,79 @@ TEST_F(EvaluateRunTest, TimeOffsetAndExtrinsicErrorsAreThoseOfCalibrationYaml) {
                                                   Eigen::Vector3d(1, -1, 2).normalized()));
   calibration.T_C_U.rotation = calibration.T_C_U.rotation * turn;
   calibration.T_C_U.translation_m += Eigen::Vector3d(0.003, -0.004, 0.0);
-  fixture_.writeRun(fixture_.framesTrue(), fixture_.linesTrue(), calibration);
+  fixture_.writeRun(fixture_.framesTrue(), linesWith(fixture_, calibration), calibration);
   const EvaluationMetrics metrics = evaluate(fixture_);
   EXPECT_NEAR(value(metrics.time_offset_error_s), 0.004, 1e-15);
   EXPECT_NEAR(value(metrics.extrinsic_rotation_error_deg), 1.5, 1e-9);
   EXPECT_NEAR(value(metrics.extrinsic_translation_error_m), 0.005, 1e-15);
-  // The trajectories are untouched.
+  // The frames are untouched.
   EXPECT_EQ(value(metrics.rgb_ate_m), 0.0);
+}
+
+TEST_F(EvaluateRunTest, AWrongExtrinsicTurnsAndMovesEveryScanLineByItsError) {
+  RunCalibration calibration = fixture_.calibrationEqualToTruth();
+  const Eigen::Quaterniond turn(Eigen::AngleAxisd(1.5 * so3_detail::kDegToRad,
+                                                  Eigen::Vector3d(1, -1, 2).normalized()));
+  calibration.T_C_U.rotation = calibration.T_C_U.rotation * turn;
+  calibration.T_C_U.translation_m += Eigen::Vector3d(0.003, -0.004, 0.0);
+  fixture_.writeRun(fixture_.framesTrue(), linesWith(fixture_, calibration), calibration);
+  const EvaluationMetrics metrics = evaluate(fixture_);
+  // The frames are exact, so the view Sim(3) is the identity: every line is
+  // turned by the extrinsic's 1.5 degrees and moved by its 5 mm (turned by
+  // R_W_C, which keeps lengths).
+  EXPECT_NEAR(value(metrics.uhi_rotation_rmse_deg), 1.5, 1e-9);
+  EXPECT_NEAR(value(metrics.uhi_position_rmse_m), 0.005, 1e-12);
+  EXPECT_NEAR(value(metrics.uhi_rotation_rmse_positions_aligned_deg), 1.5, 1e-9);
+}
+
+TEST_F(EvaluateRunTest, AWrongTimeOffsetMovesEveryScanLineAlongItsMotion) {
+  // d 4 ms too large: every scan line is posed where the vehicle was 4 ms
+  // after its true exposure.
+  constexpr double kOffsetError = 0.004;
+  RunCalibration calibration = fixture_.calibrationEqualToTruth();
+  calibration.time_offset_s += kOffsetError;
+  const std::vector<LinePose> lines = linesWith(fixture_, calibration);
+  fixture_.writeRun(fixture_.framesTrue(), lines, calibration);
+  const EvaluationMetrics metrics = evaluate(fixture_);
+  EXPECT_NEAR(value(metrics.time_offset_error_s), kOffsetError, 1e-15);
+  EXPECT_EQ(value(metrics.extrinsic_rotation_error_deg), 0.0);
+
+  // With exact frames the view Sim(3) is the identity: the errors are the
+  // lines' own motion over 4 ms.
+  double position_sum = 0.0, angle_sum = 0.0;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const SE3d& T_true = fixture_.linesTrue()[k].T;
+    position_sum += (lines[k].T.t - T_true.t).squaredNorm();
+    const double angle = Eigen::AngleAxisd(T_true.q.conjugate() * lines[k].T.q).angle() / so3_detail::kDegToRad;
+    angle_sum += angle * angle;
+  }
+  const double position_rmse = std::sqrt(position_sum / lines.size());
+  const double rotation_rmse = std::sqrt(angle_sum / lines.size());
+  EXPECT_NEAR(value(metrics.uhi_position_rmse_m), position_rmse, 1e-12);
+  EXPECT_NEAR(value(metrics.uhi_rotation_rmse_deg), rotation_rmse, 1e-9);
+  // The body moves at 0.5-0.62 m/s (north 0.5, east up to 0.36, down 0.05)
+  // and turns at a few degrees per second: 2-2.5 mm and hundredths of a
+  // degree, as a 4 ms error must give.
+  EXPECT_GT(value(metrics.uhi_position_rmse_m), 0.0019);
+  EXPECT_LT(value(metrics.uhi_position_rmse_m), 0.0027);
+  EXPECT_GT(value(metrics.uhi_rotation_rmse_deg), 0.001);
+  EXPECT_LT(value(metrics.uhi_rotation_rmse_deg), 0.03);
+}
+
+TEST_F(EvaluateRunTest, AStackedRunHasEveryMetricNullWithTheReason) {
+  fixture_.writeRunEqualToTruth();
+  RunRecord record = EvaluationFixture::record();
+  record.variant = "stacked";
+  record.survey = std::filesystem::absolute(fixture_.survey());
+  writeRunRecord(fixture_.run() / "run.yaml", record);
+  const EvaluationMetrics metrics = evaluate(fixture_);
+  EXPECT_EQ(metrics.variant, "stacked");
+  for (const MetricRow& row : metricRows()) {
+    const MetricValue& metric = metrics.*row.value;
+    if (std::string(row.key) == "peak_rss_mb") continue;
+    EXPECT_FALSE(metric.value.has_value()) << row.key;
+    EXPECT_EQ(metric.reason, kStackedHasNoPoses) << row.key;
+  }
 }
 
 TEST_F(EvaluateRunTest, AnInsOnlyStyleTrajectoryScoresItsOwnPositionError) {

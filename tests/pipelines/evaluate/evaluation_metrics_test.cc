@@ -29,6 +29,8 @@ EvaluationMetrics example() {
   metrics.ortho_scale_error = no_ortho;
   metrics.ortho_sam_deg = no_ortho;
   metrics.ortho_coverage = no_ortho;
+  metrics.ortho_pixel_error_m = no_ortho;
+  metrics.ortho_pixel_error_abs_m = no_ortho;
   metrics.timings_s = {{"frontend", 12.5}, {"geo \"ref\"", 3.25}, {"total", 15.75}};
   metrics.peak_rss_mb = MetricValue::of(300);
   metrics.ins_floor_rgb_ate_m = MetricValue::of(0.05);
@@ -36,6 +38,11 @@ EvaluationMetrics example() {
   metrics.alignment_cross_track_spread_m = MetricValue::of(0.013);
   metrics.mesh_accuracy_attitude_aligned_m = no_mesh;
   metrics.mesh_completeness_attitude_aligned = no_mesh;
+  metrics.alignment_view_distance_m = MetricValue::of(1.75);
+  metrics.uhi_position_rmse_positions_aligned_m = MetricValue::of(0.03);
+  metrics.uhi_rotation_rmse_positions_aligned_deg = MetricValue::of(0.9);
+  metrics.mesh_accuracy_positions_aligned_m = no_mesh;
+  metrics.mesh_completeness_positions_aligned = no_mesh;
   return metrics;
 }
 
@@ -58,13 +65,20 @@ TEST(EvaluationMetrics, JsonHasEveryKeyInTheContractsOrder) {
             "  \"ortho_scale_error\": null,\n"
             "  \"ortho_sam_deg\": null,\n"
             "  \"ortho_coverage\": null,\n"
+            "  \"ortho_pixel_error_m\": null,\n"
+            "  \"ortho_pixel_error_abs_m\": null,\n"
             "  \"timings_s\": {\"frontend\": 12.5, \"geo \\\"ref\\\"\": 3.25, \"total\": 15.75},\n"
             "  \"peak_rss_mb\": 300,\n"
             "  \"ins_floor_rgb_ate_m\": 0.05,\n"
             "  \"ins_floor_scale_error\": null,\n"
             "  \"alignment_cross_track_spread_m\": 0.013,\n"
             "  \"mesh_accuracy_attitude_aligned_m\": null,\n"
-            "  \"mesh_completeness_attitude_aligned\": null\n"
+            "  \"mesh_completeness_attitude_aligned\": null,\n"
+            "  \"alignment_view_distance_m\": 1.75,\n"
+            "  \"uhi_position_rmse_positions_aligned_m\": 0.03,\n"
+            "  \"uhi_rotation_rmse_positions_aligned_deg\": 0.9,\n"
+            "  \"mesh_accuracy_positions_aligned_m\": null,\n"
+            "  \"mesh_completeness_positions_aligned\": null\n"
             "}\n");
 }
 
@@ -73,29 +87,36 @@ TEST(EvaluationMetrics, TableShowsValuesUnitsTheInsFloorAndWhyAValueIsMissing) {
   printMetricsTable(out, example());
   EXPECT_EQ(out.str(),
             "variant: joint\n"
-            "metric                              value         unit  INS floor\n"
-            "rgb_ate_m                           0.1           m     0.05\n"
-            "rgb_ate_aligned_m                   0.0123457     m\n"
-            "rgb_scale_error                     1e-07               null          INS floor: 2 INS fix(es)\n"
-            "uhi_position_rmse_m                 0.02          m\n"
-            "uhi_rotation_rmse_deg               0.5           deg\n"
-            "extrinsic_rotation_error_deg        0.25          deg\n"
-            "extrinsic_translation_error_m       0.004         m\n"
-            "time_offset_error_s                 0             s\n"
-            "mesh_accuracy_m                     null          m                   no surface stage\n"
-            "mesh_completeness                   null                              no surface stage\n"
-            "alignment_cross_track_spread_m      0.013         m                   positions alone leave the roll about the track weakly determined\n"
-            "mesh_accuracy_attitude_aligned_m    null          m                   no surface stage\n"
-            "mesh_completeness_attitude_aligned  null                              no surface stage\n"
-            "ortho_mean_shift_m                  null          m                   no products stage\n"
-            "ortho_registration_rmse_m           null          m                   no products stage\n"
-            "ortho_scale_error                   null                              no products stage\n"
-            "ortho_sam_deg                       null          deg                 no products stage\n"
-            "ortho_coverage                      null                              no products stage\n"
-            "timings_s.frontend                  12.5          s\n"
-            "timings_s.geo \"ref\"                 3.25          s\n"
-            "timings_s.total                     15.75         s\n"
-            "peak_rss_mb                         300           MiB\n");
+            "metric                                  value         unit  INS floor\n"
+            "rgb_ate_m                               0.1           m     0.05\n"
+            "rgb_ate_aligned_m                       0.0123457     m\n"
+            "rgb_scale_error                         1e-07               null          INS floor: 2 INS fix(es)\n"
+            "uhi_position_rmse_m                     0.02          m\n"
+            "uhi_rotation_rmse_deg                   0.5           deg\n"
+            "alignment_view_distance_m               1.75          m\n"
+            "uhi_position_rmse_positions_aligned_m   0.03          m\n"
+            "uhi_rotation_rmse_positions_aligned_deg 0.9           deg\n"
+            "extrinsic_rotation_error_deg            0.25          deg\n"
+            "extrinsic_translation_error_m           0.004         m\n"
+            "time_offset_error_s                     0             s\n"
+            "mesh_accuracy_m                         null          m                   no surface stage\n"
+            "mesh_completeness                       null                              no surface stage\n"
+            "alignment_cross_track_spread_m          0.013         m                   positions alone leave the roll about the track weakly determined\n"
+            "mesh_accuracy_attitude_aligned_m        null          m                   no surface stage\n"
+            "mesh_completeness_attitude_aligned      null                              no surface stage\n"
+            "mesh_accuracy_positions_aligned_m       null          m                   no surface stage\n"
+            "mesh_completeness_positions_aligned     null                              no surface stage\n"
+            "ortho_mean_shift_m                      null          m                   no products stage\n"
+            "ortho_registration_rmse_m               null          m                   no products stage\n"
+            "ortho_scale_error                       null                              no products stage\n"
+            "ortho_sam_deg                           null          deg                 no products stage\n"
+            "ortho_coverage                          null                              no products stage\n"
+            "ortho_pixel_error_m                     null          m                   no products stage\n"
+            "ortho_pixel_error_abs_m                 null          m                   no products stage\n"
+            "timings_s.frontend                      12.5          s\n"
+            "timings_s.geo \"ref\"                     3.25          s\n"
+            "timings_s.total                         15.75         s\n"
+            "peak_rss_mb                             300           MiB\n");
 }
 
 TEST(EvaluationMetrics, TableShowsTheOrthoPatchCountsAndNoNoteForAWideTrack) {
@@ -105,21 +126,29 @@ TEST(EvaluationMetrics, TableShowsTheOrthoPatchCountsAndNoNoteForAWideTrack) {
   metrics.mesh_completeness_attitude_aligned = MetricValue::of(0.95);
   metrics.ortho_coverage = MetricValue::of(0.9);
   metrics.ortho_patches = "ortho: 24 patches of 60 px, 24 with data, 23 matched";
+  metrics.ortho_pixel_error_m = MetricValue::of(0.004);
+  metrics.ortho_pixel_error_abs_m = MetricValue::of(0.05);
+  metrics.ortho_pixel_counts = "ortho pixels: 9000 name a scan line and sample";
   std::ostringstream out;
   printMetricsTable(out, metrics);
   const std::string table = out.str();
-  EXPECT_NE(table.find("alignment_cross_track_spread_m      0.4           m\n"), std::string::npos)
+  EXPECT_NE(table.find("alignment_cross_track_spread_m          0.4           m\n"), std::string::npos)
       << table;
-  EXPECT_NE(table.find("mesh_accuracy_attitude_aligned_m    0.002         m\n"
-                       "mesh_completeness_attitude_aligned  0.95\n"),
+  EXPECT_NE(table.find("mesh_accuracy_attitude_aligned_m        0.002         m\n"
+                       "mesh_completeness_attitude_aligned      0.95\n"),
             std::string::npos)
       << table;
-  EXPECT_NE(table.find("ortho_coverage                      0.9\n"
+  EXPECT_NE(table.find("ortho_coverage                          0.9\n"
                        "  ortho: 24 patches of 60 px, 24 with data, 23 matched\n"),
             std::string::npos)
       << table;
-  // The patch counts are for people: not a key of the file.
+  EXPECT_NE(table.find("ortho_pixel_error_abs_m                 0.05          m\n"
+                       "  ortho pixels: 9000 name a scan line and sample\n"),
+            std::string::npos)
+      << table;
+  // The counts are for people: not keys of the file.
   EXPECT_EQ(metricsJson(metrics).find("patches"), std::string::npos);
+  EXPECT_EQ(metricsJson(metrics).find("ortho pixels"), std::string::npos);
 }
 
 }  // namespace

@@ -119,8 +119,8 @@ TEST_F(MeshMetricsTest, WithoutMeshPlyBothAreNullAndSayWhy) {
   }
 }
 
-TEST_F(MeshMetricsTest, WithoutTheFramesAlignmentBothAreNullAndSayWhy) {
-  // Frames on one line: the similarity is undetermined.
+TEST_F(MeshMetricsTest, WithoutTheFramePositionsAlignmentItsPairIsNullAndSaysWhy) {
+  // Frames on one line: the positions' similarity is undetermined.
   std::vector<TimedPose> frames = fixture_.framesTrue();
   for (std::size_t i = 0; i < frames.size(); ++i) {
     frames[i].T.t = Eigen::Vector3d(0.01 * static_cast<double>(i), 0.0, 20.0);
@@ -128,17 +128,19 @@ TEST_F(MeshMetricsTest, WithoutTheFramesAlignmentBothAreNullAndSayWhy) {
   fixture_.writeRun(frames, fixture_.linesTrue(), fixture_.calibrationEqualToTruth());
   fixture_.writeRunMesh(trueSeabed());
   const EvaluationMetrics metrics = evaluate();
-  for (const MetricValue* metric : {&metrics.mesh_accuracy_m, &metrics.mesh_completeness}) {
+  for (const MetricValue* metric :
+       {&metrics.mesh_accuracy_positions_aligned_m, &metrics.mesh_completeness_positions_aligned}) {
     EXPECT_FALSE(metric->value.has_value());
     EXPECT_NE(metric->reason.find("no similarity alignment"), std::string::npos) << metric->reason;
   }
-  // The attitude-anchored alignment takes its rotation from the orientations
-  // (here the truth's): positions along one line still give scale and
-  // translation, so the mesh is measured under it.
-  EXPECT_TRUE(metrics.mesh_accuracy_attitude_aligned_m.value.has_value())
-      << metrics.mesh_accuracy_attitude_aligned_m.reason;
-  EXPECT_TRUE(metrics.mesh_completeness_attitude_aligned.value.has_value())
-      << metrics.mesh_completeness_attitude_aligned.reason;
+  // The view Sim(3) (the contract's) and the attitude-anchored alignment
+  // take their rotation from the orientations too (here the truth's): the
+  // view points leave the line, so the mesh is measured under both.
+  for (const MetricValue* metric :
+       {&metrics.mesh_accuracy_m, &metrics.mesh_completeness, &metrics.mesh_accuracy_attitude_aligned_m,
+        &metrics.mesh_completeness_attitude_aligned}) {
+    EXPECT_TRUE(metric->value.has_value()) << metric->reason;
+  }
 }
 
 TEST_F(MeshMetricsTest, APointCloudHasAnAccuracyButNoCompleteness) {
@@ -176,7 +178,9 @@ TEST_F(MeshMetricsTest, MetricsJsonCarriesTheValues) {
   json << in.rdbuf();
   EXPECT_NE(json.str().find("\"mesh_completeness\": 1,"), std::string::npos) << json.str();
   EXPECT_EQ(json.str().find("\"mesh_accuracy_m\": null"), std::string::npos) << json.str();
-  EXPECT_NE(json.str().find("\"mesh_completeness_attitude_aligned\": 1\n"), std::string::npos)
+  EXPECT_NE(json.str().find("\"mesh_completeness_attitude_aligned\": 1,"), std::string::npos)
+      << json.str();
+  EXPECT_NE(json.str().find("\"mesh_completeness_positions_aligned\": 1\n"), std::string::npos)
       << json.str();
   EXPECT_NE(json.str().find("\"mesh_accuracy_attitude_aligned_m\": "), std::string::npos);
   EXPECT_EQ(json.str().find("\"mesh_accuracy_attitude_aligned_m\": null"), std::string::npos);
