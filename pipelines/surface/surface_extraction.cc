@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <tuple>
 #include <utility>
 
 #include "pipelines/surface/delaunay_cells.h"
@@ -37,6 +38,21 @@ SurfaceMesh extractSurface(const CellLabelling& labelling) {
     if ((side == CGAL::POSITIVE) != use_outer) std::swap(face[1], face[2]);
     faces.push_back(face);
   }
+  // The facet iterator visits each facet from the cell of lower address, so
+  // the faces came out in an order (and the mesh's vertices after cleaning
+  // and stitching in one) that changed from run to run. Each face is turned
+  // to start at its lowest input point (a cyclic turn: the orientation
+  // stays) and the faces are sorted by their points: the same cut gives the
+  // same mesh, byte for byte.
+  for (auto& face : faces) {
+    const auto lowest = std::min_element(face.begin(), face.end(), [](const auto& a, const auto& b) {
+      return a->info() < b->info();
+    });
+    std::rotate(face.begin(), lowest, face.end());
+  }
+  std::sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) {
+    return std::tuple(a[0]->info(), a[1]->info(), a[2]->info()) < std::tuple(b[0]->info(), b[1]->info(), b[2]->info());
+  });
   // Dense re-indexing in input-point order.
   std::vector<std::pair<int, Delaunay::Vertex_handle>> used;
   for (const auto& face : faces)
