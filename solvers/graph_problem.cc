@@ -209,8 +209,10 @@ void GraphProblem::storeValues() {
 std::shared_ptr<ceres::ParameterBlockOrdering> GraphProblem::schurOrdering() const {
   if (eliminated_landmarks_.empty()) return nullptr;
   auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  for (const Key& key : variables_) ordering->AddElementToGroup(block(key), 1);
-  for (const Key& key : eliminated_landmarks_) ordering->AddElementToGroup(block(key), 0);
+  // The blocks are the problem's; Ceres names them by non-const pointer.
+  auto* self = const_cast<GraphProblem*>(this);
+  for (const Key& key : variables_) ordering->AddElementToGroup(self->block(key), 1);
+  for (const Key& key : eliminated_landmarks_) ordering->AddElementToGroup(self->block(key), 0);
   return ordering;
 }
 

@@ -70,7 +70,7 @@ struct GeorefBundleOptions {
   double fix_gate_sigmas = 5.0;
   int max_fix_rejection_rounds = 3;
   int max_iterations = 50;
-  int num_threads = 2;
+  int num_threads = 0;  // 0: the process's thread budget (hsmap run --threads)
   double outlier_px = 3.0;  // observations beyond this after the solve are removed from the map
 };
 
