@@ -50,7 +50,10 @@ void JointOptions::validate() const {
                                 std::to_string(sigma_match_along_m));
   }
   positive("tie_robust_scale", tie_robust_scale);
-  positive("min_frame_weight_in_support", min_frame_weight_in_support);
+  if (!(min_frame_weight_in_support >= 0.0) || !std::isfinite(min_frame_weight_in_support)) {
+    throw std::invalid_argument("JointOptions::min_frame_weight_in_support: expected >= 0 (0: no weight asked), got " +
+                                std::to_string(min_frame_weight_in_support));
+  }
   positive("sigma_linear_acceleration", sigma_linear_acceleration);
   positive("sigma_angular_acceleration", sigma_angular_acceleration);
   positive("weak_fraction_of_prior", weak_fraction_of_prior);

@@ -82,17 +82,6 @@ void publish(const fs::path& run, const StageDefinition& stage) {
   }
 }
 
-bool anyExists(const fs::path& run, const std::vector<fs::path>& paths, fs::path& found) {
-  for (const fs::path& path : paths) {
-    std::error_code error;
-    if (fs::exists(run / path, error)) {
-      found = run / path;
-      return true;
-    }
-  }
-  return false;
-}
-
 int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& err) {
   try {
     options.validate();
@@ -200,14 +189,22 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
     }
   }
 
-  // Files no stage record accounts for (an older hsmap's run, a copy) are
-  // replaced only on purpose.
-  for (int i = first; i < int(stages.size()) && !options.force; ++i) {
+  // Files no stage record accounts for, in a folder with no record at all
+  // (a run by an older hsmap, a copy, someone's own files), are replaced only
+  // on purpose. A folder with records was written by this runner: what a
+  // killed stage left is its own and goes (its unfinished files end in
+  // .partial anyway).
+  bool any_record = false;
+  for (StageId id : {StageId::frontend, StageId::georef, StageId::surface, StageId::refine, StageId::joint,
+                     StageId::products}) {
+    std::error_code exists_error;
+    any_record = any_record || fs::exists(stageRecordPath(run, stageDefinition(id).name), exists_error);
+  }
+  for (int i = first; i < int(stages.size()) && !options.force && !any_record; ++i) {
     const StageDefinition& stage = stageDefinition(stages[std::size_t(i)]);
-    std::string why;
-    fs::path found;
-    if (!readStageRecord(stageRecordPath(run, stage.name), why) && anyExists(run, stage.outputs, found)) {
-      err << "error: " << found.string() << " exists from an earlier run that left no record of its "
+    for (const StageOutputFile& file : listStageOutputs(run, stage.outputs)) {
+      if (file.path.ends_with(".partial")) continue;
+      err << "error: " << (run / file.path).string() << " exists from an earlier run that left no record of its "
           << stage.name << " stage; pass --force to replace it\n";
       return 1;
     }

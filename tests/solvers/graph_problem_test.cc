@@ -196,13 +196,13 @@ TEST(GraphProblem, SchurOrderingEliminatesAnIndependentSetOfFreeLandmarks) {
   ASSERT_NE(ordering, nullptr);
   EXPECT_EQ(ordering->NumGroups(), 2);
   EXPECT_EQ(ordering->NumElements(), 7);
-  EXPECT_EQ(ordering->GroupId(values.data(L(0))), 0);
-  EXPECT_EQ(ordering->GroupId(values.data(L(1))), 0);
-  EXPECT_EQ(ordering->GroupId(values.data(L(2))), 0);
-  EXPECT_EQ(ordering->GroupId(values.data(L(3))), 1);
-  EXPECT_EQ(ordering->GroupId(values.data(L(4))), 1);
-  EXPECT_EQ(ordering->GroupId(values.data(K(0))), 1);
-  EXPECT_EQ(ordering->GroupId(values.data(K(1))), 1);
+  EXPECT_EQ(ordering->GroupId(problem.block(L(0))), 0);
+  EXPECT_EQ(ordering->GroupId(problem.block(L(1))), 0);
+  EXPECT_EQ(ordering->GroupId(problem.block(L(2))), 0);
+  EXPECT_EQ(ordering->GroupId(problem.block(L(3))), 1);
+  EXPECT_EQ(ordering->GroupId(problem.block(L(4))), 1);
+  EXPECT_EQ(ordering->GroupId(problem.block(K(0))), 1);
+  EXPECT_EQ(ordering->GroupId(problem.block(K(1))), 1);
 }
 
 TEST(GraphProblem, NoSchurOrderingWithoutLandmarks) {

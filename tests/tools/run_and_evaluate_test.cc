@@ -22,6 +22,7 @@
 #include "pipelines/evaluate/evaluation_metrics.h"
 #include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
+#include "tests/tools/simulated_tiny_survey.h"
 
 namespace hsmap {
 namespace {
@@ -34,17 +35,7 @@ using testing::TempFolder;
 
 namespace fs = std::filesystem;
 
-// One simulated tiny survey for the whole program (3 s to write).
-const fs::path& tinySurvey() {
-  static const TempFolder folder("run-evaluate-survey");
-  static const fs::path survey = [] {
-    const fs::path path = folder / "tiny";
-    const RunResult simulate = runHsmap(folder, "simulate --preset tiny --out " + quoted(path.string()));
-    if (simulate.exit_status != 0) throw std::runtime_error("simulate failed: " + simulate.err);
-    return path;
-  }();
-  return survey;
-}
+const fs::path& tinySurvey() { return testing::simulatedTinySurvey(); }
 
 // A number of metrics.json by key; NaN when the key is missing, and the
 // text "null" gives -1 (the metrics checked here are never negative).

@@ -19,6 +19,7 @@
 
 #include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
+#include "tests/tools/simulated_tiny_survey.h"
 
 namespace hsmap {
 namespace {
@@ -29,16 +30,7 @@ using testing::RunResult;
 using testing::runHsmap;
 using testing::TempFolder;
 
-const fs::path& tinySurvey() {
-  static const TempFolder folder("run-resume-survey");
-  static const fs::path survey = [] {
-    const fs::path path = folder / "tiny";
-    const RunResult simulate = runHsmap(folder, "simulate --preset tiny --out " + quoted(path.string()));
-    if (simulate.exit_status != 0) throw std::runtime_error("simulate failed: " + simulate.err);
-    return path;
-  }();
-  return survey;
-}
+const fs::path& tinySurvey() { return testing::simulatedTinySurvey(); }
 
 std::string bytesOf(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -221,7 +213,8 @@ TEST_F(RunResume, UsageErrorsNameTheOptionTheStageAndTheVariant) {
   const RunResult variant = run(out, "--variant fused");
   EXPECT_EQ(variant.exit_status, 1);
   EXPECT_EQ(variant.err, "error: --variant: expected one of sequential, planar, stacked, joint, got 'fused'\n");
-  const RunResult threads = run(out, "--threads -2");
+  const RunResult threads =
+      runHsmap(temp_, "run " + quoted(tinySurvey().string()) + " --out " + quoted(out.string()) + " --threads=-2");
   EXPECT_EQ(threads.exit_status, 1);
   EXPECT_EQ(threads.err, "error: --threads: expected a thread count >= 0 (0: every hardware thread), got -2\n");
   EXPECT_FALSE(fs::exists(out));  // nothing was started

@@ -182,9 +182,14 @@ TEST(JointProblem, RecoversExtrinsicAndTimeOffsetWithinTheirStatedSigma) {
     }
     EXPECT_LT(std::abs(result.time_offset_s - survey.d_truth), 3.0 * *result.time_offset_sigma_s)
         << result.summary();
-    // The data, not the prior, determined them: sigmas far below the prior's.
+    // The data, not the prior, determined them: sigmas far below the
+    // prior's (2 deg, 5 cm). With the product's weighting the frames between
+    // keyframes count a hundredth as much on this short transect, and the
+    // translation's 1-sigma is held below a fifth of the prior's, 10 mm
+    // (6.8-6.9 mm measured), rather than below 5 mm.
+    const bool product_weighting = factor == JointOptions{}.other_frame_sigma_factor;
     EXPECT_LT(result.sigma_rotation_deg->maxCoeff(), 0.05);
-    EXPECT_LT(result.sigma_translation_m->maxCoeff(), 0.005);
+    EXPECT_LT(result.sigma_translation_m->maxCoeff(), product_weighting ? 0.010 : 0.005);
     EXPECT_LT(*result.time_offset_sigma_s, 0.002);
     EXPECT_TRUE(result.weakly_determined.empty()) << result.summary();
     // The tie points' residuals on the ground are the noise they were given:
