@@ -21,6 +21,10 @@
 #include "pipelines/evaluate/ortho_raster_grid.h"
 
 namespace hsmap {
+
+namespace {
+constexpr double kLineRounding = 1e-3;  // lines
+}  // namespace
 namespace {
 
 // The UTM -> W map is evaluated exactly every kNodeStep pixels along a row.
@@ -166,9 +170,15 @@ OrthoPixelError measureOrthoPixelError(const std::filesystem::path& ancillary_hd
         centres.clear();
         for (int i = 0; i < side; ++i) {
           for (int c = left + pc * side; c < left + (pc + 1) * side; ++c) {
-            const float l = band.line(i, c), u = band.sample(i, c);
+            float l = band.line(i, c);
+            const float u = band.sample(i, c);
             if (!named(l) || !named(u)) continue;
             ++patch.named;
+            // A gap-filled pixel's line, interpolated and stored as float32,
+            // may pass the first or last line by a rounding (1440.000122 for
+            // 1440 on rugged): within a thousandth of a line it is that line.
+            if (l < 0.0f && l > -kLineRounding) l = 0.0f;
+            if (l > last_line && l < last_line + kLineRounding) l = float(last_line);
             const bool line_ok = l >= 0.0f && l <= last_line;
             if (!line_ok || !camera_true.isInLine(u)) {
               if (patch.first_error.empty()) {

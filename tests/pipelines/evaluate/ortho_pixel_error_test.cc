@@ -249,6 +249,23 @@ TEST_F(OrthoPixelErrorTest, ALineOutsideTheSurveyIsAnInputErrorNamingTheFileAndP
   }
 }
 
+// A gap-filled pixel's line, interpolated in float32, can pass the last line
+// by a rounding (1440.000122 on rugged): that is the last line, not an error.
+TEST_F(OrthoPixelErrorTest, ALineARoundingPastTheLastIsTheLastLine) {
+  std::filesystem::create_directories(ancillaryHdr().parent_path());
+  {
+    EnviWriter writer(ancillaryHdr(), header(4));
+    Eigen::MatrixXf line = Eigen::MatrixXf::Constant(4, kCols, kNaN);
+    for (int r = 0; r < kRows; ++r) {
+      if (r == 7) line.col(3) << std::nextafter(89.0f, 100.0f), 10.0f, kNaN, kNaN;  // lines are 0 to 89
+      writer.writeLine(line);
+    }
+    writer.finish();
+  }
+  EXPECT_NO_THROW(
+      measureOrthoPixelError(ancillaryHdr(), T_W_U_, camera_, caster_, *fixture_.config().origin, options_));
+}
+
 TEST_F(OrthoPixelErrorTest, AnAncillaryLayerOnAnotherGridThanTheOrthoImageIsAnInputError) {
   writeAncillary([](int, int) { return Eigen::Vector2d::Zero(); });
   EnviHeader other = header(1);
