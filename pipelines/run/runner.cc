@@ -139,7 +139,8 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   // previous stage's fingerprint.
   const std::string stamp = surveyStamp(options.survey, run);
   std::vector<std::string> fingerprints, options_texts;
-  for (int i = 0; i <= last; ++i) {
+  const int stage_count = int(stages.size());
+  for (int i = 0; i < stage_count; ++i) {
     const StageDefinition& stage = stageDefinition(stages[std::size_t(i)]);
     options_texts.push_back(stage.options_text(options));
     fingerprints.push_back(fingerprintOf(std::string("hsmap ") + HSMAP_VERSION + "\nstage: " + stage.name +
@@ -222,7 +223,9 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
     const StageDefinition& stage = stageDefinition(id);
     const int index = stageIndex(stages, stage.name);
     if (index >= 0 && index < first) continue;  // kept
-    if (index < 0 && id == StageId::products) continue;  // every variant has products
+    // Nothing to run (all up to --until is up to date): the stages after
+    // --until are checked after the loop, not removed.
+    if (index >= 0 && first > last) continue;
     fs::remove(stageRecordPath(run, stage.name));
     for (const fs::path& path : stage.outputs) fs::remove_all(run / path);
   }
@@ -260,6 +263,27 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
     writeStageRecord(stageRecordPath(run, stage.name), done);
     record.stages.push_back({stage.name, done.time_s, done.peak_rss_mb});
     publish(run, stage);
+  }
+
+  // When nothing ran, the stages after --until that are still up to date
+  // stay, published, so the contract's files match the products beside
+  // them; from the first that is not, they go.
+  if (first > last) {
+    for (int i = last + 1; i < stage_count; ++i) {
+      const StageDefinition& stage = stageDefinition(stages[std::size_t(i)]);
+      std::optional<StageRecordFile> later;
+      std::string why;
+      if (upToDate(run, stage.name, fingerprints[std::size_t(i)], options_texts[std::size_t(i)], later, why)) {
+        publish(run, stage);
+        continue;
+      }
+      for (int j = i; j < stage_count; ++j) {
+        const StageDefinition& stale = stageDefinition(stages[std::size_t(j)]);
+        fs::remove(stageRecordPath(run, stale.name));
+        for (const fs::path& path : stale.outputs) fs::remove_all(run / path);
+      }
+      break;
+    }
   }
 
   record.options["until"] = stageDefinition(stages[std::size_t(last)]).name;

@@ -120,6 +120,13 @@ TEST_F(RunResume, ASecondRunSkipsEveryStageAndAChangedOptionRedoesItsStageAndThe
   EXPECT_EQ(differing(expected, products(out)), std::vector<std::string>{});
   EXPECT_TRUE(fs::is_regular_file(out / "run.yaml"));
 
+  // Stopping earlier on a finished run changes nothing: the later stages are
+  // still up to date, so their files stay and stay published.
+  const RunResult earlier = run(out, "--until georef");
+  ASSERT_EQ(earlier.exit_status, 0) << earlier.err << earlier.out;
+  EXPECT_NE(earlier.out.find("stage georef: up to date, skipped"), std::string::npos) << earlier.out;
+  EXPECT_EQ(differing(expected, products(out)), std::vector<std::string>{});
+
   // A products option: the estimation is kept, the products are made again.
   const RunResult coarser = run(out, "--ortho-pixel 0.01");
   ASSERT_EQ(coarser.exit_status, 0) << coarser.err << coarser.out;
