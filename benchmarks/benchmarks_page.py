@@ -403,6 +403,10 @@ def measure_restart(ctx, survey, variant):
     script = Path(__file__).resolve().parent / "resume_benchmark.sh"
     build = Path(ctx.hsmap()).resolve().parent.parent
     command = f"WORK_DIR=/tmp benchmarks/resume_benchmark.sh {ctx.show([path])} {variant} -- {ctx.display_build}"
+    if table.exists():
+        limited = re.search(r"^<!-- STAGES=(.*) -->$", table.read_text(), re.M)
+        if limited:
+            command = f"STAGES=\"{limited.group(1)}\" " + command
     if not table.exists():
         table.parent.mkdir(parents=True, exist_ok=True)
         env = dict(os.environ, WORK_DIR=str(ctx.work / "restart"))
@@ -676,7 +680,8 @@ def section_needs(section, surveys):
     if section == "variants":
         return [f"run/rugged/{v}" for v in VARIANTS] if "rugged" in s else []
     if section == "resume":
-        return ["run/rugged/sequential", "resume/rugged/sequential", "restart/rugged/sequential"] if "rugged" in s else []
+        return ["run/rugged/sequential", "resume/rugged/sequential", "restart/rugged/sequential",
+                "restart/rugged/joint"] if "rugged" in s else []
     if section == "products":
         return (["run/rugged/sequential"] if "rugged" in s else []) + \
                (["products/transect-100m"] if "transect-100m" in s else [])
@@ -1085,16 +1090,17 @@ def sections(page):
     else:
         rows.append(("rugged: the same `hsmap run` again on a finished run", at_most(5, "< 5 s"),
                      Cell(spread(m["wall_s"], fmt_s) + ", every stage skipped", median(m["wall_s"]), m, cmd)))
-    mid = "restart/rugged/sequential"
-    m, why = page.measured(mid)
-    cmd = (page.get(mid) or {}).get("command") or "benchmarks/resume_benchmark.sh SURVEY sequential -- build"
-    if m is None:
-        rows.append(("rugged: `--from X` (each stage) on a finished run, against the full run's products",
-                     IDENTICAL, Cell(why, m=page.get(mid), command=cmd)))
-    else:
+    for variant in ("sequential", "joint"):
+        mid = f"restart/rugged/{variant}"
+        m, why = page.measured(mid)
+        cmd = (page.get(mid) or {}).get("command") or f"benchmarks/resume_benchmark.sh SURVEY {variant} -- build"
+        if m is None:
+            rows.append((f"rugged {variant}: `--from X` (each stage) on a finished run, against the full run's products",
+                         IDENTICAL, Cell(why, m=page.get(mid), command=cmd)))
+            continue
         for stage, result in m["stages"].items():
             identical = 1.0 if result["result"].startswith("products byte-identical") else 0.0
-            rows.append((f"rugged sequential: `--from {stage}` on a finished run (`--threads 1`)", IDENTICAL,
+            rows.append((f"rugged {variant}: `--from {stage}` on a finished run (`--threads 1`)", IDENTICAL,
                          Cell(f"{result['result']}; {result['wall_s']:.0f} s", identical, m, cmd)))
     out["resume"] = ("Resuming and restarting (docs/RUN.md)",
                      ["A second `hsmap run` with the same arguments finds every stage up to date and skips it; "

@@ -8,7 +8,9 @@
 # Prints one Markdown table per variant. Usage:
 #   benchmarks/resume_benchmark.sh SURVEY [VARIANT ...] -- BUILD_DIR
 # e.g. benchmarks/resume_benchmark.sh /work/surveys/rugged sequential joint -- build
-# WORK_DIR (default /tmp) holds the runs.
+# WORK_DIR (default /tmp) holds the runs; STAGES (e.g. "joint products")
+# restricts step 3 to those stages (a joint run's earlier stages take most of
+# an hour on rugged).
 set -euo pipefail
 survey=$1
 shift
@@ -34,6 +36,8 @@ for variant in "${variants[@]}"; do
     stacked) stages=(products) ;;
     *) echo "unknown variant $variant" >&2; exit 2 ;;
   esac
+  all_stages=${#stages[@]}
+  if [[ -n ${STAGES:-} ]]; then read -r -a stages <<<"$STAGES"; fi
   start=$(date +%s.%N)
   "$hsmap" run "$survey" --out "$run" --variant "$variant" --threads 1 >"$run.full.log" 2>&1
   full_s=$(echo "$(date +%s.%N) - $start" | bc)
@@ -43,11 +47,12 @@ for variant in "${variants[@]}"; do
   again_s=$(echo "$(date +%s.%N) - $start" | bc)
   skipped=$(grep -c ": up to date, skipped" "$run.again.log" || true)
   echo "### $name, $variant"
+  if [[ -n ${STAGES:-} ]]; then echo "<!-- STAGES=$STAGES -->"; fi
   echo
   echo "| command | wall (s) | result |"
   echo "|---|---:|---|"
   printf '| `hsmap run %s --out RUN --variant %s --threads 1` | %.1f | %d files |\n' "$name" "$variant" "$full_s" "$(wc -l <"$run.full.md5")"
-  printf '| the same again | %.2f | %d of %d stages up to date, skipped |\n' "$again_s" "$skipped" "${#stages[@]}"
+  printf '| the same again | %.2f | %d of %d stages up to date, skipped |\n' "$again_s" "$skipped" "$all_stages"
   for stage in "${stages[@]}"; do
     start=$(date +%s.%N)
     "$hsmap" run "$survey" --out "$run" --variant "$variant" --threads 1 --from "$stage" >"$run.from_$stage.log" 2>&1
