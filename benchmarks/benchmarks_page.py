@@ -680,8 +680,8 @@ def section_needs(section, surveys):
     if section == "variants":
         return [f"run/rugged/{v}" for v in VARIANTS] if "rugged" in s else []
     if section == "resume":
-        return ["run/rugged/sequential", "resume/rugged/sequential", "restart/rugged/sequential",
-                "restart/rugged/joint"] if "rugged" in s else []
+        return ["run/rugged/sequential", "resume/rugged/sequential"] + \
+               [f"restart/rugged/{v}" for v in VARIANTS] if "rugged" in s else []
     if section == "products":
         return (["run/rugged/sequential"] if "rugged" in s else []) + \
                (["products/transect-100m"] if "transect-100m" in s else [])
@@ -1090,7 +1090,7 @@ def sections(page):
     else:
         rows.append(("rugged: the same `hsmap run` again on a finished run", at_most(5, "< 5 s"),
                      Cell(spread(m["wall_s"], fmt_s) + ", every stage skipped", median(m["wall_s"]), m, cmd)))
-    for variant in ("sequential", "joint"):
+    for variant in ("sequential", "joint", "planar", "stacked"):
         mid = f"restart/rugged/{variant}"
         m, why = page.measured(mid)
         cmd = (page.get(mid) or {}).get("command") or f"benchmarks/resume_benchmark.sh SURVEY {variant} -- build"
