@@ -1150,7 +1150,12 @@ def sections(page):
         cmd = (page.get(mid) or {}).get("command") or ctx.show(gbench_argv(ctx, mid)[:-1])
         if m is None:
             return (figure, goal, Cell(why, m=page.get(mid), command=cmd))
-        b = m.get("benchmarks", {}).get(name)
+        # Google Benchmark names a run by its arguments and settings
+        # ("BM_X/linear_solver:0/iterations:1/real_time"): the first whose
+        # name is `name` or starts with it and a "/".
+        benchmarks = m.get("benchmarks", {})
+        b = benchmarks.get(name) or next(
+            (v for k, v in sorted(benchmarks.items()) if k.startswith(name + "/")), None)
         if b is None or (counter not in b):
             return (figure, goal, Cell(f"not measured: no {name} {counter} in the JSON output", m=m, command=cmd))
         reps = m.get("context", {}).get("repetitions") or ctx.repeats
