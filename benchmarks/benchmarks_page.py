@@ -1098,7 +1098,9 @@ def sections(page):
             rows.append((f"rugged {variant}: `--from X` (each stage) on a finished run, against the full run's products",
                          IDENTICAL, Cell(why, m=page.get(mid), command=cmd)))
             continue
-        for stage, result in m["stages"].items():
+        order = ["frontend", "georef", "surface", "refine", "joint", "products"]
+        for stage, result in sorted(m["stages"].items(), key=lambda item: order.index(item[0])
+                                    if item[0] in order else len(order)):
             identical = 1.0 if result["result"].startswith("products byte-identical") else 0.0
             rows.append((f"rugged {variant}: `--from {stage}` on a finished run (`--threads 1`)", IDENTICAL,
                          Cell(f"{result['result']}; {result['wall_s']:.0f} s", identical, m, cmd)))
