@@ -86,4 +86,10 @@ void AtomicFile::abandon() noexcept {
   committed_ = true;
 }
 
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
+  AtomicFile file(path);
+  file.stream() << text;
+  file.commit();
+}
+
 }  // namespace hsmap

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 namespace hsmap {
 
@@ -54,5 +55,9 @@ class AtomicFile {
   std::ofstream stream_;
   bool committed_ = false;
 };
+
+// `text` written to `path` through an AtomicFile (small text products:
+// tables, summaries, records).
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace hsmap

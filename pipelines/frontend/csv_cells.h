@@ -30,11 +30,7 @@ inline std::string pose(const SE3d& T) {
          number(T.q.x()) + "," + number(T.q.y()) + "," + number(T.q.z());
 }
 
-inline void writeFile(const std::filesystem::path& path, const std::string& text) {
-  AtomicFile file(path);
-  file.stream() << text;
-  file.commit();
-}
+inline void writeFile(const std::filesystem::path& path, const std::string& text) { writeTextAtomically(path, text); }
 
 [[noreturn]] inline void bad(const CsvTable& table, const CsvTable::Row& row, const std::string& detail) {
   throw InputError(table.file, InputError::atLine(row.line_number), detail);

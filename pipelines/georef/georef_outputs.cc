@@ -17,12 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void writeText(const fs::path& path, const std::string& text) {
-  AtomicFile file(path);
-  file.stream() << text;
-  file.commit();
-}
-
 std::string poseSourcesCsv(const GeorefResult& result) {
   std::string text = "kind,index,t,source\n";
   for (const auto& f : result.frames) {
@@ -90,11 +84,11 @@ void writeGeorefOutputs(const fs::path& folder, const GeorefResult& result, cons
   writeTumTrajectory(staging / georef_files::frames_tum, frames);
   writeLinePoseTable(staging / georef_files::lines, lines);
   writeTumTrajectory(staging / georef_files::lines_tum, lines_timed);
-  writeText(staging / georef_files::pose_sources, poseSourcesCsv(result));
+  writeTextAtomically(staging / georef_files::pose_sources, poseSourcesCsv(result));
   // Tables with no row are not written (the CSV rules refuse them): a
   // missing file reads as none.
   if (!result.rejected_fixes.empty()) {
-    writeText(staging / georef_files::rejected_fixes, rejectedFixesCsv(result));
+    writeTextAtomically(staging / georef_files::rejected_fixes, rejectedFixesCsv(result));
   }
   writeRunCalibration(staging / georef_files::calibration, calibration);
   if (!result.map_W.keyframes().empty()) writeVisualMapFiles(staging, result.map_W);
@@ -105,7 +99,7 @@ void writeGeorefOutputs(const fs::path& folder, const GeorefResult& result, cons
   }
   std::string summary = result.summary() + "\n";
   for (const auto& warning : result.warnings) summary += "warning: " + warning + "\n";
-  writeText(staging / georef_files::summary, summary);
+  writeTextAtomically(staging / georef_files::summary, summary);
 
   // Everything is complete: move it into place.
   fs::remove_all(folder);

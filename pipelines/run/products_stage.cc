@@ -64,11 +64,7 @@ void runProductsStage(const StageContext& context, const ProductsStageOptions& o
   }
   if (options.points) out << ", " << (folder / "points.ply").string();
   out << "\n";
-  if (rgb_ortho.valid()) {
-    out << rgb_ortho.get();
-  } else {
-    writeRgbOrthoImage(ply, mesh, report.grid, projection, context.run / "map", options.geotiff, out);
-  }
+  out << rgb_ortho.get();  // on_grid is called before the first tile of every cast
 }
 
 }  // namespace hsmap

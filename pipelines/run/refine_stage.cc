@@ -22,12 +22,6 @@ namespace {
 
 SE3d toSe3(const RigidTransformConfig& T) { return SE3d(T.rotation, T.translation_m); }
 
-void writeText(const fs::path& path, const std::string& text) {
-  AtomicFile file(path);
-  file.stream() << text;
-  file.commit();
-}
-
 }  // namespace
 
 void runRefineStage(const StageContext& context, const RefineStageOptions& options) {
@@ -91,7 +85,7 @@ void runRefineStage(const StageContext& context, const RefineStageOptions& optio
   writeLinePoseTable(staging / georef_files::lines, line_poses);
   writeTumTrajectory(staging / georef_files::lines_tum, lines_timed);
   writeRunCalibration(staging / georef_files::calibration, calibration);
-  writeText(staging / georef_files::summary, summary.str());
+  writeTextAtomically(staging / georef_files::summary, summary.str());
   fs::remove_all(folder);
   fs::rename(staging, folder);
   out << summary.str() << "wrote " << folder.string() << "/\n";

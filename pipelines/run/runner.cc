@@ -75,6 +75,13 @@ bool upToDate(const fs::path& run, const std::string& name, const std::string& f
   return true;
 }
 
+// The stage's record first (so a stage half removed is never up to date),
+// then its files.
+void removeStage(const fs::path& run, const StageDefinition& stage) {
+  fs::remove(stageRecordPath(run, stage.name));
+  for (const fs::path& path : stage.outputs) fs::remove_all(run / path);
+}
+
 void publish(const fs::path& run, const StageDefinition& stage) {
   for (const auto& [owned, contract] : stage.published) {
     std::error_code error;
@@ -149,8 +156,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   }
 
   // Another survey's run is replaced only on purpose.
-  for (StageId id : {StageId::frontend, StageId::georef, StageId::surface, StageId::refine, StageId::joint,
-                     StageId::products}) {
+  for (StageId id : allStages()) {
     std::string why;
     const auto earlier = readStageRecord(stageRecordPath(run, stageDefinition(id).name), why);
     if (earlier && earlier->survey != record.survey.string() && !options.force) {
@@ -196,8 +202,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   // killed stage left is its own and goes (its unfinished files end in
   // .partial anyway).
   bool any_record = false;
-  for (StageId id : {StageId::frontend, StageId::georef, StageId::surface, StageId::refine, StageId::joint,
-                     StageId::products}) {
+  for (StageId id : allStages()) {
     std::error_code exists_error;
     any_record = any_record || fs::exists(stageRecordPath(run, stageDefinition(id).name), exists_error);
   }
@@ -218,16 +223,14 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
     fs::remove_all(run / path);
   }
   for (const fs::path& path : publishedContractPaths()) fs::remove_all(run / path);
-  for (StageId id : {StageId::frontend, StageId::georef, StageId::surface, StageId::refine, StageId::joint,
-                     StageId::products}) {
+  for (StageId id : allStages()) {
     const StageDefinition& stage = stageDefinition(id);
     const int index = stageIndex(stages, stage.name);
     if (index >= 0 && index < first) continue;  // kept
     // Nothing to run (all up to --until is up to date): the stages after
     // --until are checked after the loop, not removed.
     if (index >= 0 && first > last) continue;
-    fs::remove(stageRecordPath(run, stage.name));
-    for (const fs::path& path : stage.outputs) fs::remove_all(run / path);
+    removeStage(run, stage);
   }
 
   const StageContext context{survey, run, options.variant, out};
@@ -277,11 +280,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
         publish(run, stage);
         continue;
       }
-      for (int j = i; j < stage_count; ++j) {
-        const StageDefinition& stale = stageDefinition(stages[std::size_t(j)]);
-        fs::remove(stageRecordPath(run, stale.name));
-        for (const fs::path& path : stale.outputs) fs::remove_all(run / path);
-      }
+      for (int j = i; j < stage_count; ++j) removeStage(run, stageDefinition(stages[std::size_t(j)]));
       break;
     }
   }

@@ -118,6 +118,15 @@ const std::vector<StageId>& variantStages(Variant variant) {
   return sequential;
 }
 
+const std::vector<StageId>& allStages() {
+  static const std::vector<StageId> stages = [] {
+    std::vector<StageId> ids;
+    for (const StageDefinition& definition : definitions()) ids.push_back(definition.id);
+    return ids;
+  }();
+  return stages;
+}
+
 const StageDefinition& stageDefinition(StageId id) {
   for (const StageDefinition& definition : definitions()) {
     if (definition.id == id) return definition;

@@ -41,6 +41,8 @@ struct StageDefinition {
 };
 
 const std::vector<StageId>& variantStages(Variant variant);
+// Every stage of any variant, in run order.
+const std::vector<StageId>& allStages();
 const StageDefinition& stageDefinition(StageId id);
 // The stage named `name` among `stages`, or -1.
 int stageIndex(const std::vector<StageId>& stages, const std::string& name);
