@@ -48,7 +48,7 @@ REPO = Path(__file__).resolve().parent.parent
 PRESETS = ["tiny", "rugged", "flat", "low-relief", "transect-100m"]
 VARIANTS = ["stacked", "planar", "sequential", "joint"]
 SECTIONS = ["simulate", "inspect", "frontend", "georef", "surface", "refine", "joint", "variants",
-            "resume", "products", "tiny", "kernels", "io"]
+            "resume", "products", "tiny", "unlike", "kernels", "io"]
 TIME = "/usr/bin/time"
 
 # ---------------------------------------------------------------- helpers
@@ -266,8 +266,27 @@ def ensure_survey(ctx, name):
     return survey
 
 
+# A survey unlike the presets, as other programs write them: another camera
+# (800 x 600, strong radial-tangential distortion) and UHI (480 samples x 40
+# bands), the INS without its attitude columns, the cube rewritten big-endian
+# BIP (scripts/rewrite_cube.py).
+UNLIKE_CONFIG = "benchmarks/frontend_unlike_presets.yaml"
+
+
 def simulate_argv(ctx, name):
+    if name == "unlike":
+        return [ctx.hsmap(), "simulate", "--config", REPO / UNLIKE_CONFIG, "--out", ctx.survey(name)]
     return [ctx.hsmap(), "simulate", "--preset", name, "--out", ctx.survey(name)]
+
+
+def unlike_rewrites(ctx, survey):
+    """The INS's attitude columns cut; the cube rewritten big-endian BIP. Returns an error text or None."""
+    ins = survey / "nav" / "ins.csv"
+    lines = ins.read_text().splitlines()
+    ins.write_text("\n".join(",".join(line.split(",")[:4]) for line in lines) + "\n")
+    r = ctx.execute(["/usr/bin/python3", REPO / "scripts" / "rewrite_cube.py", survey, "--interleave", "bip",
+                     "--byte-order", "1"], "simulate_unlike_rewrite", timed=False)
+    return None if r["rc"] == 0 else r.get("error")
 
 
 def measure_simulate(ctx, name):
@@ -280,6 +299,11 @@ def measure_simulate(ctx, name):
     shutil.rmtree(survey, ignore_errors=True)
     survey.parent.mkdir(parents=True, exist_ok=True)
     r = ctx.execute(simulate_argv(ctx, name), f"simulate_{name}")
+    if r["rc"] == 0 and name == "unlike":
+        r["error"] = unlike_rewrites(ctx, survey)
+        if r["error"]:
+            r["rc"] = 1
+            (survey / "survey.yaml").unlink(missing_ok=True)
     ctx.save(mid, {"ok": r["rc"] == 0, "error": r.get("error"), "wall_s": [r["wall_s"]],
                    "peak_mb": [r["peak_mb"]], "cpu_s": r["cpu_s"],
                    "command": "/usr/bin/time -v " + ctx.show(simulate_argv(ctx, name))})
@@ -687,6 +711,8 @@ def section_needs(section, surveys):
                (["products/transect-100m"] if "transect-100m" in s else [])
     if section == "tiny":
         return [f"run/tiny/{v}" for v in VARIANTS] if "tiny" in s else []
+    if section == "unlike":
+        return [f"run/unlike/{v}" for v in VARIANTS]
     if section == "kernels":
         return list(GBENCH)
     if section == "io":
@@ -1143,6 +1169,28 @@ def sections(page):
                  page.metric("tiny", "sequential", "ortho_registration_rmse_m", fmt_mm)))
     out["tiny"] = ("The `tiny` preset (every variant end to end)",
                    ["A 1.2 m survey for quick checks; the tests run on it."], rows)
+
+    # unlike
+    rows = []
+    for v in VARIANTS:
+        rows.append((f"unlike: whole {v} run, wall time", NO_GOAL, page.run_time("unlike", v, "wall")))
+    for v in ("planar", "sequential", "joint"):
+        rows.append((f"unlike: `ortho_pixel_error_m` ({v})", NO_GOAL,
+                     page.metric("unlike", v, "ortho_pixel_error_m", fmt_mm)))
+    for v in ("sequential", "joint"):
+        rows.append((f"unlike: `ortho_registration_rmse_m` ({v})", at_most(0.010, "≤ 10 mm"),
+                     page.metric("unlike", v, "ortho_registration_rmse_m", fmt_mm)))
+        rows.append((f"unlike: `mesh_accuracy_m` ({v})", at_most(0.005, "≤ 5 mm"),
+                     page.metric("unlike", v, "mesh_accuracy_m", fmt_mm)))
+    rows.append(("unlike: `extrinsic_rotation_error_deg` (joint)", NO_GOAL,
+                 page.metric("unlike", "joint", "extrinsic_rotation_error_deg", lambda x: f"{x:.3f}°")))
+    rows.append(("unlike: `time_offset_error_s` (joint)", NO_GOAL,
+                 page.metric("unlike", "joint", "time_offset_error_s", lambda x: f"{x * 1000:.2f} ms")))
+    out["unlike"] = ("A survey unlike the presets",
+                     [f"`hsmap simulate --config {UNLIKE_CONFIG}` (800 × 600 camera with strong distortion, "
+                      "480 samples × 40 bands), then the INS's attitude columns cut and the cube rewritten "
+                      "big-endian BIP (`scripts/rewrite_cube.py SURVEY --interleave bip --byte-order 1`), as "
+                      "surveys written by other programs come."], rows)
 
     # kernels
     rows = []
