@@ -1,7 +1,5 @@
 #include "pipelines/evaluate/ins_floor.h"
 
-#include <ceres/ceres.h>
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -10,62 +8,10 @@
 #include "core/geometry/so3.h"
 #include "core/survey/number_text.h"
 #include "core/survey/survey.h"
+#include "solvers/similarity_fit.h"
 
 namespace hsmap {
 namespace {
-
-// The similarity about the centroid c of the true body positions:
-//   p_ins = s R (p - c) + c + t_c,   s = exp(log_s),
-// so that R and t_c are nearly uncorrelated (see the header).
-
-// W_p (p_ins - S p_W_B): one fix's position, whitened by its stated sigmas.
-struct FixPositionResidual {
-  Eigen::Vector3d p_centred;  // p_W_B(t_k) - c
-  Eigen::Vector3d p_ins_minus_c;
-  Eigen::Vector3d inverse_sigma;
-
-  template <typename T>
-  bool operator()(const T* q_data, const T* t_data, const T* log_s, T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(q_data);
-    const Eigen::Map<const Eigen::Matrix<T, 3, 1>> t(t_data);
-    const Eigen::Matrix<T, 3, 1> mapped = ceres::exp(log_s[0]) * (q * p_centred.cast<T>()) + t;
-    for (int i = 0; i < 3; ++i) {
-      residual[i] = (T(p_ins_minus_c[i]) - mapped[i]) * inverse_sigma[i];
-    }
-    return true;
-  }
-
-  static ceres::CostFunction* create(const Eigen::Vector3d& p_centred,
-                                     const Eigen::Vector3d& p_ins_minus_c,
-                                     const Eigen::Vector3d& inverse_sigma) {
-    return new ceres::AutoDiffCostFunction<FixPositionResidual, 3, 4, 3, 1>(
-        new FixPositionResidual{p_centred, p_ins_minus_c, inverse_sigma});
-  }
-};
-
-// W_a log(R_ins^-1 R R_W_B): one fix's attitude against the turned true attitude.
-struct FixAttitudeResidual {
-  Eigen::Quaterniond q_ins_inverse;
-  Eigen::Quaterniond q_W_B_true;
-  Eigen::Vector3d inverse_sigma_rad;
-
-  template <typename T>
-  bool operator()(const T* q_data, T* residual) const {
-    const Eigen::Map<const Eigen::Quaternion<T>> q(q_data);
-    const Eigen::Quaternion<T> error =
-        q_ins_inverse.cast<T>() * Eigen::Quaternion<T>(q * q_W_B_true.cast<T>());
-    const Eigen::Matrix<T, 3, 1> phi = logSO3(error);
-    for (int i = 0; i < 3; ++i) residual[i] = phi[i] * inverse_sigma_rad[i];
-    return true;
-  }
-
-  static ceres::CostFunction* create(const Eigen::Quaterniond& q_ins,
-                                     const Eigen::Quaterniond& q_W_B_true,
-                                     const Eigen::Vector3d& inverse_sigma_rad) {
-    return new ceres::AutoDiffCostFunction<FixAttitudeResidual, 3, 4>(
-        new FixAttitudeResidual{q_ins.conjugate(), q_W_B_true, inverse_sigma_rad});
-  }
-};
 
 struct TruthAtFix {
   SE3d T_W_B;  // true body pose at the fix time
@@ -129,50 +75,23 @@ InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
                    " to fix a similarity");
   }
 
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const TruthAtFix& pair : pairs) c += pair.T_W_B.t;
-  c /= static_cast<double>(pairs.size());
-
-  const Sim3 start = initialSimilarity(pairs);
-  Eigen::Quaterniond q = start.rotation();
-  Eigen::Vector3d t_c = start.scale() * (start.rotation() * c) + start.translation() - c;
-  double log_s = std::log(start.scale());
-
-  ceres::Problem problem;
-  const Eigen::Vector3d inverse_sigma_p(1.0 / ins.sigma_horizontal_m, 1.0 / ins.sigma_horizontal_m,
-                                        1.0 / ins.sigma_depth_m);
-  const Eigen::Vector3d inverse_sigma_a(
-      1.0 / (ins.sigma_attitude_deg[0] * so3_detail::kDegToRad),
-      1.0 / (ins.sigma_attitude_deg[1] * so3_detail::kDegToRad),
-      1.0 / (ins.sigma_attitude_deg[2] * so3_detail::kDegToRad));
+  const Eigen::Vector3d sigma_p(ins.sigma_horizontal_m, ins.sigma_horizontal_m, ins.sigma_depth_m);
+  const Eigen::Vector3d sigma_a(ins.sigma_attitude_deg[0] * so3_detail::kDegToRad,
+                                ins.sigma_attitude_deg[1] * so3_detail::kDegToRad,
+                                ins.sigma_attitude_deg[2] * so3_detail::kDegToRad);
+  std::vector<SimilarityFitPosition> positions;
+  std::vector<SimilarityFitAttitude> attitudes;
   for (const TruthAtFix& pair : pairs) {
-    problem.AddResidualBlock(FixPositionResidual::create(pair.T_W_B.t - c, pair.fix->p_W_B - c,
-                                                         inverse_sigma_p),
-                             nullptr, q.coeffs().data(), t_c.data(), &log_s);
-    if (with_attitude) {
-      problem.AddResidualBlock(
-          FixAttitudeResidual::create(*pair.fix->q_W_B, pair.T_W_B.q, inverse_sigma_a), nullptr,
-          q.coeffs().data());
-    }
+    positions.push_back({pair.T_W_B.t, Eigen::Vector3d::Zero(), pair.fix->p_W_B, sigma_p});
+    if (with_attitude) attitudes.push_back({pair.T_W_B.q, *pair.fix->q_W_B, sigma_a});
   }
-  problem.SetManifold(q.coeffs().data(), new ceres::EigenQuaternionManifold);
-
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;  // 7 unknowns
-  options.max_num_iterations = 200;
-  // Tight tolerances: the floor of an exact INS is 0, and a test checks it.
-  options.function_tolerance = 1e-16;
-  options.gradient_tolerance = 1e-16;
-  options.parameter_tolerance = 1e-14;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  if (!summary.IsSolutionUsable()) {
-    return missing("the INS similarity fit failed: " + summary.message);
+  Sim3 S;
+  try {
+    S = fitSimilarity(positions, attitudes, initialSimilarity(pairs)).S_target_source;
+  } catch (const std::invalid_argument& error) {
+    return missing(std::string("the INS similarity fit failed: ") + error.what());
   }
-
-  const double s = std::exp(log_s);
-  const Sim3 S(s, q.normalized(), c + t_c - s * (q.normalized() * c));
+  const double s = S.scale();
   double sum = 0.0;
   for (const TimedPose& frame : frames_true) {
     sum += (S.apply(frame.T.t) - frame.T.t).squaredNorm();

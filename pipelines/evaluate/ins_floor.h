@@ -25,13 +25,11 @@
 //   ins_floor_scale_error = |s - 1|,
 // the rgb_ate_m and rgb_scale_error of a perfect-shape trajectory geo-referenced by the INS.
 //
-// The fit is a small weighted nonlinear least-squares problem (7 unknowns)
-// solved with Ceres, started from the unweighted Umeyama alignment (or the
-// identity when the body positions are degenerate for it), parametrised
-// about the centroid of the body positions so that rotation and translation
-// do not trade off over kilometres of lever arm. Without attitude and with
-// collinear fixes (a straight transect) the rotation about the line is not
-// observable; the solver then leaves it at its start.
+// The fit is the maximum-likelihood similarity of solvers/similarity_fit.h
+// (the one georef places the map with), started from the unweighted Umeyama
+// alignment (or the identity when the body positions are degenerate for
+// it). Without attitude and with collinear fixes (a straight transect) the
+// rotation about the line is not observable; it then stays at its start.
 //
 // The floor is only as good as the fixes' spread: over a path a few INS
 // sigmas long the free scale is fitted to noise (docs/EVALUATE.md).
