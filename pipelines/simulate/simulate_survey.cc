@@ -117,6 +117,44 @@ EnviHeader uhiCubeHeader(const SimulationConfig& config, const std::vector<doubl
   return header;
 }
 
+// The north/east bounding box in W of the scene's extent once turned
+// (seabed_scene_config.h): the extent itself at heading 0.
+struct WorldExtent {
+  double north_min_m, north_max_m, east_min_m, east_max_m;
+};
+
+WorldExtent turnedSceneExtent(const SeabedSceneConfig& scene) {
+  if (scene.heading_deg == 0.0) {
+    return {scene.north_min_m, scene.north_max_m, scene.east_min_m, scene.east_max_m};
+  }
+  const double heading = scene.heading_deg * M_PI / 180.0;
+  const double cos_h = std::cos(heading);
+  const double sin_h = std::sin(heading);
+  WorldExtent extent{1e300, -1e300, 1e300, -1e300};
+  for (double north : {scene.north_min_m, scene.north_max_m}) {
+    for (double east : {scene.east_min_m, scene.east_max_m}) {
+      const double dn = north - scene.pivot_north_m;
+      const double de = east - scene.pivot_east_m;
+      const double north_W = scene.pivot_north_m + cos_h * dn - sin_h * de;
+      const double east_W = scene.pivot_east_m + sin_h * dn + cos_h * de;
+      extent.north_min_m = std::min(extent.north_min_m, north_W);
+      extent.north_max_m = std::max(extent.north_max_m, north_W);
+      extent.east_min_m = std::min(extent.east_min_m, east_W);
+      extent.east_max_m = std::max(extent.east_max_m, east_W);
+    }
+  }
+  return extent;
+}
+
+// True when the frame at `tau_s` from the trajectory's start falls in a
+// configured video dropout.
+bool inBlackout(const std::vector<RgbBlackout>& blackouts, double tau_s) {
+  for (const RgbBlackout& blackout : blackouts) {
+    if (tau_s >= blackout.start_s && tau_s < blackout.start_s + blackout.duration_s) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::uint64_t simulationMaterialSeed(const SimulationConfig& config) {
@@ -183,6 +221,13 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   scene_config.seabed_depth_m = config.scene.seabed_depth_m;
   scene_config.cell_m = config.scene.cell_m;
   scene_config.seed = noiseSeed(config.seed, kScene, 0);
+  // The extent above is along the track as if it headed north; the scene is
+  // built that way and turned about the track's start with the path.
+  scene_config.heading_deg = motion_config.heading_deg;
+  scene_config.pivot_north_m = motion_config.start_north_m;
+  scene_config.pivot_east_m = motion_config.start_east_m;
+  scene_config.slope_deg = config.scene.slope_deg;
+  scene_config.slope_direction_deg = config.scene.slope_direction_deg;
   log << "scene: building " << terrainPresetName(config.scene.terrain) << " seabed, "
       << (scene_config.north_max_m - scene_config.north_min_m) << " m x "
       << (scene_config.east_max_m - scene_config.east_min_m) << " m" << std::endl;
@@ -249,7 +294,13 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
         const std::size_t k = k0 + i;
         const SE3d T_W_B = trajectory.T_W_B(times[k]);
         const SE3d T_W_C = T_W_B * T_B_C;
-        images[i] = renderer.render(T_W_B, T_W_C, std::int64_t(k));
+        // A dropout is not rendered: each frame's noise has its own seed, so
+        // the other frames do not change.
+        if (inBlackout(config.rgb.blackouts, times[k] - trajectory.startTime())) {
+          images[i] = cv::Mat::zeros(config.rgb.camera.height, config.rgb.camera.width, CV_8UC3);
+        } else {
+          images[i] = renderer.render(T_W_B, T_W_C, std::int64_t(k));
+        }
         char name[32];
         std::snprintf(name, sizeof(name), "frame_%06zu.png", k);
         frames[k] = FrameRow{name, times[k], 0};
@@ -282,8 +333,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   const std::vector<double> wavelengths = uhiBandCentres(config.uhi);
   const UhiRenderer uhi(context, config.uhi, wavelengths, noiseSeed(config.seed, kUhi, 0));
   const double sample_spacing_m = motion_config.altitude_m / config.uhi.camera.f;
-  SwathFootprint footprint(scene_config.north_min_m, scene_config.north_max_m,
-                           scene_config.east_min_m, scene_config.east_max_m,
+  const WorldExtent scene_extent = turnedSceneExtent(scene_config);
+  SwathFootprint footprint(scene_extent.north_min_m, scene_extent.north_max_m,
+                           scene_extent.east_min_m, scene_extent.east_max_m,
                            config.truth.ortho_pixel_m,
                            int(config.truth.ortho_pixel_m / sample_spacing_m / 2.0));
   {

@@ -121,6 +121,10 @@ void validateSimulationConfig(const SimulationConfig& config) {
           "a grid spacing in [0.002, 0.5] m");
   require(std::isfinite(config.scene.seabed_depth_m) && config.scene.seabed_depth_m > 5.0,
           "scene.seabed_depth_m", "a depth > 5 m");
+  require(config.scene.slope_deg >= 0.0 && config.scene.slope_deg <= 45.0, "scene.slope_deg",
+          "an angle in [0, 45] degrees");
+  require(std::abs(config.scene.slope_direction_deg) <= 360.0, "scene.slope_direction_deg",
+          "an angle in [-360, 360] degrees");
   const VehicleMotionConfig& motion = config.motion;
   require(motion.length_m > 0.0 && motion.length_m <= 10000.0, "motion.length_m",
           "a length in (0, 10000] m");
@@ -136,6 +140,8 @@ void validateSimulationConfig(const SimulationConfig& config) {
           "motion.roll_pitch_amplitude_deg", "an angle in [0, 20] degrees");
   require(motion.heading_wander_deg >= 0.0 && motion.heading_wander_deg <= 30.0,
           "motion.heading_wander_deg", "an angle in [0, 30] degrees");
+  require(std::abs(motion.heading_deg) <= 360.0, "motion.heading_deg",
+          "an angle in [-360, 360] degrees");
   require(motion.lanes >= 1 && motion.lanes <= 100, "motion.lanes", "an integer in [1, 100]");
   require(motion.lane_spacing_m > 0.0, "motion.lane_spacing_m", "a spacing > 0 m");
   require(config.rgb.camera.width >= 16 && config.rgb.camera.height >= 16, "rgb.camera",
@@ -149,6 +155,13 @@ void validateSimulationConfig(const SimulationConfig& config) {
   require(config.rgb.read_noise_dn >= 0.0, "rgb.read_noise_dn", "a value >= 0");
   require(config.rgb.electrons_per_dn > 0.0, "rgb.electrons_per_dn", "a value > 0");
   require(config.rgb.exposure_reflectance > 0.0, "rgb.exposure_reflectance", "a value > 0");
+  for (const RgbBlackout& blackout : config.rgb.blackouts) {
+    require(std::isfinite(blackout.start_s) && blackout.start_s >= 0.0, "rgb.blackouts.start_s",
+            "a time >= 0 s from the trajectory's start");
+    require(std::isfinite(blackout.duration_s) && blackout.duration_s > 0.0 &&
+                blackout.duration_s <= 1e6,
+            "rgb.blackouts.duration_s", "a duration in (0, 1e6] s");
+  }
   require(config.uhi.camera.samples >= 8, "uhi.camera.samples", "at least 8 samples");
   require(config.uhi.camera.f > 0.0, "uhi.camera.f", "> 0");
   require(config.uhi.bands >= 1 && config.uhi.bands <= 1000, "uhi.bands",

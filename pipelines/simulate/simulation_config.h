@@ -34,6 +34,19 @@ struct SimulatedSceneConfig {
   TerrainPreset terrain = TerrainPreset::rugged;
   double seabed_depth_m = 40.0;  // mean depth of the seabed below the origin
   double cell_m = 0.02;          // grid spacing of the seabed mesh
+  // A plane added to the seabed (rocks included): it deepens by tan(slope_deg)
+  // per metre towards slope_direction_deg (downhill, clockwise from north),
+  // and is zero at the track's start. The vehicle keeps its altitude, so its
+  // depth changes along the slope.
+  double slope_deg = 0.0;            // in [0, 45]
+  double slope_direction_deg = 0.0;  // in [-360, 360]
+};
+
+// A time span of the video with no picture (a dropout): its frames are
+// written all black. Times are from the trajectory's start.
+struct RgbBlackout {
+  double start_s = 0.0;     // >= 0
+  double duration_s = 0.0;  // > 0; frames with start_s <= t < start_s + duration_s are black
 };
 
 struct SimulatedRgbConfig {
@@ -45,6 +58,8 @@ struct SimulatedRgbConfig {
   double electrons_per_dn = 20.0;  // shot noise: variance = DN / electrons_per_dn
   double exposure_reflectance = 0.6;  // a Lambertian surface of this reflectance at the
                                       // nominal altitude, on the axis, is exposed to 250 DN
+  std::vector<RgbBlackout> blackouts;  // video dropouts; the frames and their truth poses are
+                                       // still written
 };
 
 struct SimulatedUhiConfig {

@@ -36,7 +36,8 @@ bool boolean(const StrictYamlMap& map, const std::string& key, bool default_valu
 
 void readScene(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("scene")) return;
-  const StrictYamlMap scene = root.map("scene", {"terrain", "seabed_depth_m", "cell_m"});
+  const StrictYamlMap scene = root.map(
+      "scene", {"terrain", "seabed_depth_m", "cell_m", "slope_deg", "slope_direction_deg"});
   if (scene.has("terrain")) {
     const std::string name = scene.text("terrain");
     const auto terrain = parseTerrainPreset(name);
@@ -45,13 +46,17 @@ void readScene(const StrictYamlMap& root, SimulationConfig& config) {
   }
   config.scene.seabed_depth_m = scene.positiveNumber("seabed_depth_m", config.scene.seabed_depth_m);
   config.scene.cell_m = scene.positiveNumber("cell_m", config.scene.cell_m);
+  config.scene.slope_deg = scene.numberInRange("slope_deg", 0.0, 45.0, config.scene.slope_deg);
+  config.scene.slope_direction_deg = scene.numberInRange(
+      "slope_direction_deg", -360.0, 360.0, config.scene.slope_direction_deg);
 }
 
 void readMotion(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("motion")) return;
   const StrictYamlMap motion = root.map(
       "motion", {"pattern", "length_m", "speed_m_s", "speed_variation", "altitude_m",
-                 "roll_pitch_amplitude_deg", "heading_wander_deg", "lanes", "lane_spacing_m"});
+                 "roll_pitch_amplitude_deg", "heading_wander_deg", "lanes", "lane_spacing_m",
+                 "heading_deg"});
   VehicleMotionConfig& m = config.motion;
   if (motion.has("pattern")) {
     const std::string pattern = motion.text("pattern");
@@ -72,16 +77,37 @@ void readMotion(const StrictYamlMap& root, SimulationConfig& config) {
   m.heading_wander_deg = nonNegative(motion, "heading_wander_deg", m.heading_wander_deg);
   m.lanes = integer(motion, "lanes", m.lanes);
   m.lane_spacing_m = motion.positiveNumber("lane_spacing_m", m.lane_spacing_m);
+  m.heading_deg = motion.numberInRange("heading_deg", -360.0, 360.0, m.heading_deg);
   if (m.pattern == MotionPattern::lawnmower && m.lanes < 2) {
     motion.fail("lanes", "expected at least 2 lanes for a lawnmower pattern");
   }
 }
 
-void readRgb(const StrictYamlMap& root, SimulationConfig& config) {
+// rgb.blackouts: a list of {start_s, duration_s} maps. StrictYamlMap reads
+// maps only, so the list is walked here and each item read as its own map.
+std::vector<RgbBlackout> readBlackouts(const StrictYamlMap& rgb, const YAML::Node& list) {
+  if (!list.IsSequence()) {
+    rgb.fail("blackouts", "expected a list of {start_s, duration_s}, got " + describeYamlNode(list));
+  }
+  std::vector<RgbBlackout> blackouts;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node item = list[i];
+    const long long line = item.Mark().line >= 0 ? item.Mark().line + 1 : rgb.lineOf("blackouts");
+    const StrictYamlMap span(rgb.file(), item, rgb.keyPath("blackouts") + "[" + std::to_string(i) + "]",
+                             line, {"start_s", "duration_s"});
+    RgbBlackout blackout;
+    blackout.start_s = span.numberInRange("start_s", 0.0, 1e6);
+    blackout.duration_s = span.positiveNumberUpTo("duration_s", 1e6);
+    blackouts.push_back(blackout);
+  }
+  return blackouts;
+}
+
+void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationConfig& config) {
   if (!root.has("rgb")) return;
   const StrictYamlMap rgb =
       root.map("rgb", {"width", "height", "camera", "rate_hz", "samples_per_pixel",
-                       "read_noise_dn", "electrons_per_dn", "exposure_reflectance"});
+                       "read_noise_dn", "electrons_per_dn", "exposure_reflectance", "blackouts"});
   SimulatedRgbConfig& r = config.rgb;
   if (rgb.has("camera") && (rgb.has("width") || rgb.has("height"))) {
     rgb.fail("camera", "give either camera or width and height, not both");
@@ -99,6 +125,7 @@ void readRgb(const StrictYamlMap& root, SimulationConfig& config) {
   r.read_noise_dn = nonNegative(rgb, "read_noise_dn", r.read_noise_dn);
   r.electrons_per_dn = rgb.positiveNumber("electrons_per_dn", r.electrons_per_dn);
   r.exposure_reflectance = rgb.positiveNumber("exposure_reflectance", r.exposure_reflectance);
+  if (rgb.has("blackouts")) r.blackouts = readBlackouts(rgb, rgb_node["blackouts"]);
 }
 
 void readUhi(const StrictYamlMap& root, SimulationConfig& config) {
@@ -149,7 +176,8 @@ void readIns(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("ins")) return;
   const StrictYamlMap ins = root.map(
       "ins", {"rate_hz", "horizontal_noise_m", "horizontal_drift_m_per_sqrt_s", "depth_noise_m",
-              "depth_drift_m_per_sqrt_s", "roll_pitch_noise_deg", "heading_noise_deg"});
+              "depth_drift_m_per_sqrt_s", "roll_pitch_noise_deg", "heading_noise_deg",
+              "attitude"});
   InsNoiseConfig& n = config.ins;
   n.rate_hz = ins.positiveNumber("rate_hz", n.rate_hz);
   n.horizontal_noise_m = nonNegative(ins, "horizontal_noise_m", n.horizontal_noise_m);
@@ -160,6 +188,7 @@ void readIns(const StrictYamlMap& root, SimulationConfig& config) {
       nonNegative(ins, "depth_drift_m_per_sqrt_s", n.depth_drift_m_per_sqrt_s);
   n.roll_pitch_noise_deg = nonNegative(ins, "roll_pitch_noise_deg", n.roll_pitch_noise_deg);
   n.heading_noise_deg = nonNegative(ins, "heading_noise_deg", n.heading_noise_deg);
+  n.attitude = boolean(ins, "attitude", n.attitude);
 }
 
 void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
@@ -212,7 +241,7 @@ SimulationConfig readSimulationConfig(const std::filesystem::path& path) {
   }
   readScene(root, config);
   readMotion(root, config);
-  readRgb(root, config);
+  readRgb(root, document["rgb"], config);
   readUhi(root, config);
   readCalibration(root, config);
   readIns(root, config);

@@ -64,7 +64,7 @@ InsTable synthesizeIns(const VehicleTrajectory& trajectory, const InsNoiseConfig
   const double drift_step_depth = noise.depth_drift_m_per_sqrt_s * std::sqrt(dt);
 
   InsTable table;
-  table.has_attitude = true;
+  table.has_attitude = noise.attitude;
   Eigen::Vector3d drift_W = Eigen::Vector3d::Zero();
   for (long long k = 0;; ++k) {
     // Times from k, not by accumulating dt, so that rounding does not build up.
@@ -91,10 +91,12 @@ InsTable synthesizeIns(const VehicleTrajectory& trajectory, const InsNoiseConfig
     fix.lat_deg = position.lat_deg;
     fix.lon_deg = position.lon_deg;
     fix.depth_m = position.depth_m;
-    fix.roll_deg = wrapRollDeg(attitude_deg[0] + roll_noise);
-    // Pitch is a few degrees here; clamping only guards the +-90 range ins.csv enforces.
-    fix.pitch_deg = std::clamp(attitude_deg[1] + pitch_noise, -90.0, 90.0);
-    fix.heading_deg = wrapHeadingDeg(attitude_deg[2] + heading_noise);
+    if (noise.attitude) {
+      fix.roll_deg = wrapRollDeg(attitude_deg[0] + roll_noise);
+      // Pitch is a few degrees here; clamping only guards the +-90 range ins.csv enforces.
+      fix.pitch_deg = std::clamp(attitude_deg[1] + pitch_noise, -90.0, 90.0);
+      fix.heading_deg = wrapHeadingDeg(attitude_deg[2] + heading_noise);
+    }
     table.fixes.push_back(fix);
   }
   return table;

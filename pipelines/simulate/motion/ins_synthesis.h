@@ -21,8 +21,13 @@
 //
 // Randomness: std::mt19937_64(seed), nine standardNormal draws per fix in the
 // order white north, east, down, drift north, east, down, roll, pitch,
-// heading (drawn even when a sigma is zero), so the same seed always gives
-// the same table, and changing one sigma does not reshuffle the others.
+// heading (drawn even when a sigma is zero, or when the attitude is not
+// recorded), so the same seed always gives the same table, and changing one
+// sigma or `attitude` does not reshuffle the others.
+//
+// attitude = false models an INS that gives positions only: the table has
+// has_attitude = false (ins.csv without roll, pitch, heading columns) and
+// its angles are 0; the positions are those of attitude = true.
 
 #include <cstdint>
 
@@ -40,6 +45,7 @@ struct InsNoiseConfig {
   double depth_drift_m_per_sqrt_s = 0.002;      // >= 0
   double roll_pitch_noise_deg = 0.05;           // >= 0
   double heading_noise_deg = 0.2;               // >= 0
+  bool attitude = true;                         // false: fixes without roll, pitch, heading
   std::uint64_t seed = 1;
 
   // Throws std::invalid_argument naming the first bad field.
@@ -47,7 +53,7 @@ struct InsNoiseConfig {
 };
 
 // Fixes at t_begin + k / rate_hz for every k >= 0 with time <= t_end.
-// has_attitude = true. Throws std::invalid_argument for an invalid noise
+// has_attitude = noise.attitude. Throws std::invalid_argument for an invalid noise
 // config or unless startTime() <= t_begin <= t_end <= endTime().
 InsTable synthesizeIns(const VehicleTrajectory& trajectory, const InsNoiseConfig& noise,
                        const LocalNedFrame& w_frame, double t_begin, double t_end);

@@ -79,14 +79,16 @@ void requireFinite(double value, const char* name) {
 }  // namespace
 
 LanePath::LanePath(double lane_length_m, int lanes, double lane_spacing_m, double start_north_m,
-                   double start_east_m)
+                   double start_east_m, double first_lane_heading_deg)
     : lane_length_m_(lane_length_m),
       lanes_(lanes),
       lane_spacing_m_(lane_spacing_m),
       start_north_m_(start_north_m),
-      start_east_m_(start_east_m) {
+      start_east_m_(start_east_m),
+      first_lane_heading_rad_(first_lane_heading_deg * kPi / 180.0) {
   requireFinite(start_north_m, "start_north_m");
   requireFinite(start_east_m, "start_east_m");
+  requireFinite(first_lane_heading_deg, "first_lane_heading_deg");
   if (!(lane_length_m > 0.0) || !std::isfinite(lane_length_m)) {
     throw std::invalid_argument("LanePath: lane length must be a finite number > 0 m");
   }
@@ -104,6 +106,21 @@ LanePath::LanePath(double lane_length_m, int lanes, double lane_spacing_m, doubl
 }
 
 PathPoint LanePath::at(double s) const {
+  PathPoint point = northHeadingAt(s);
+  // Skipped at heading 0 so that the default path keeps its exact bits.
+  if (first_lane_heading_rad_ == 0.0) return point;
+  const double cos_h = std::cos(first_lane_heading_rad_);
+  const double sin_h = std::sin(first_lane_heading_rad_);
+  const double north = point.north_m - start_north_m_;
+  const double east = point.east_m - start_east_m_;
+  // Clockwise (north towards east) rotation by h in the (north, east) plane.
+  point.north_m = start_north_m_ + cos_h * north - sin_h * east;
+  point.east_m = start_east_m_ + sin_h * north + cos_h * east;
+  point.heading_rad += first_lane_heading_rad_;
+  return point;
+}
+
+PathPoint LanePath::northHeadingAt(double s) const {
   s = std::clamp(s, 0.0, length_m_);
   const double period = lane_length_m_ + turn_length_m_;
   const int lane = std::min(static_cast<int>(s / period), lanes_ - 1);

@@ -19,6 +19,12 @@
 // makes it end exactly on the next lane. Turns go east: clockwise (right)
 // after northbound lanes, anticlockwise (left) after southbound ones, so the
 // heading stays in [0, pi] and is continuous (never wrapped).
+//
+// A first-lane heading h (clockwise from north) turns the whole path about
+// its start (start_north_m, start_east_m): every point's offset from the start
+// is rotated by h and h is added to its heading, so the lanes run along h and
+// h + pi and step towards h + pi/2 (to the right of the first lane). h = 0 is
+// the north-heading path above, bit for bit.
 
 #include <vector>
 
@@ -35,7 +41,7 @@ class LanePath {
   // Throws std::invalid_argument unless lane_length_m > 0, lanes >= 1,
   // lane_spacing_m > 0 (when lanes >= 2) and every value is finite.
   LanePath(double lane_length_m, int lanes, double lane_spacing_m, double start_north_m,
-           double start_east_m);
+           double start_east_m, double first_lane_heading_deg = 0.0);
 
   // Total arc length: lanes * lane length + (lanes - 1) * turn length.
   double length() const { return length_m_; }
@@ -47,11 +53,15 @@ class LanePath {
   PathPoint at(double s) const;
 
  private:
+  // The path point at s before the first-lane heading turns it.
+  PathPoint northHeadingAt(double s) const;
+
   double lane_length_m_;
   int lanes_;
   double lane_spacing_m_;
   double start_north_m_;
   double start_east_m_;
+  double first_lane_heading_rad_ = 0.0;
   double turn_length_m_ = 0.0;
   double length_m_ = 0.0;
 };

@@ -40,6 +40,7 @@ void VehicleMotionConfig::validate() const {
   requirePositive(altitude_m, "altitude_m");
   requireInRange(roll_pitch_amplitude_deg, 0.0, 45.0, "roll_pitch_amplitude_deg");
   requireInRange(heading_wander_deg, 0.0, 45.0, "heading_wander_deg");
+  requireInRange(heading_deg, -360.0, 360.0, "heading_deg");
   if (pattern == MotionPattern::transect && lanes != 1) {
     fail("a transect has lanes = 1, got " + std::to_string(lanes) +
          " (use the lawnmower pattern for several lanes)");

@@ -13,8 +13,9 @@
 namespace hsmap {
 
 enum class MotionPattern {
-  transect,   // one lane, heading north from the start point
-  lawnmower,  // `lanes` lanes alternating north / south, stepping east, joined by U-turns
+  transect,   // one lane, heading `heading_deg` (north by default) from the start point
+  lawnmower,  // `lanes` lanes alternating forward / back, stepping to the right of the
+              // first lane (east when it heads north), joined by U-turns
 };
 
 struct VehicleMotionConfig {
@@ -27,7 +28,9 @@ struct VehicleMotionConfig {
   double heading_wander_deg = 3.0;        // bound of the body's yaw off the path, in [0, 45]
   int lanes = 1;                   // transect: 1; lawnmower: >= 2
   double lane_spacing_m = 2.0;     // east offset between lanes (lawnmower), > 0
-  double start_north_m = 0.0;      // start of the first lane, which heads north
+  double heading_deg = 0.0;        // direction of the first lane, clockwise from north, in
+                                   // [-360, 360]; the whole path turns about its start
+  double start_north_m = 0.0;      // start of the first lane
   double start_east_m = 0.0;
   double start_time_s = 0.0;       // clock time at the start of the trajectory
   std::uint64_t seed = 1;

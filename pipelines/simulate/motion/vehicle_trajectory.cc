@@ -20,7 +20,7 @@ const VehicleMotionConfig& validated(const VehicleMotionConfig& config) {
 
 LanePath makePath(const VehicleMotionConfig& config) {
   return LanePath(config.length_m, config.lanes, config.lane_spacing_m, config.start_north_m,
-                  config.start_east_m);
+                  config.start_east_m, config.heading_deg);
 }
 
 }  // namespace

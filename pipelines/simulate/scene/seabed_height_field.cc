@@ -55,6 +55,16 @@ SeabedHeightField::SeabedHeightField(const SeabedSceneConfig& config) : config_(
   // (1 - u^2)^2 is steepest at u = 1/sqrt(3) with slope 1.54 height / half width:
   // aim that at tan(50 deg).
   ridge_half_width_m_ = 1.54 * ridge_height_m_ / std::tan(50.0 * kPi / 180.0);
+
+  // No random draws here: a slope leaves every other layer as it was.
+  has_slope_ = config.slope_deg > 0.0;
+  if (has_slope_) {
+    // The downhill direction in the build frame, which W turned by -heading.
+    const double direction = (config.slope_direction_deg - config.heading_deg) * kPi / 180.0;
+    const double gradient = std::tan(config.slope_deg * kPi / 180.0);
+    slope_north_ = gradient * std::cos(direction);
+    slope_east_ = gradient * std::sin(direction);
+  }
 }
 
 double SeabedHeightField::roughness(double north_m, double east_m) const {

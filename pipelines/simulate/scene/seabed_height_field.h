@@ -4,9 +4,12 @@
 // scene's triangle grid samples it at its vertices; rock placement and tests
 // query it directly.
 //
-// Units and frames: metres in W (North-East-Down). z() is the seabed's z_W,
-// DOWN, so a higher seabed has a smaller z; elevation() is the height above
-// the mean depth, UP: z = seabed_depth_m - elevation.
+// Units and frames: metres in the scene's build frame (seabed_scene_config.h:
+// W turned by -heading_deg about the pivot; W itself at heading 0),
+// North-East-Down. z() is the seabed's z_W, DOWN, so a higher seabed has a
+// smaller z; elevation() is the relief's height above the mean depth, UP:
+// z = seabed_depth_m - elevation + the slope's plane (zero at the pivot,
+// deepening by tan(slope_deg) per metre towards slope_direction_deg in W).
 //
 // What each preset contains (elevation, metres):
 //   flat        roughness only: fractal noise at 2.5-10 cm wavelengths,
@@ -45,7 +48,11 @@ class SeabedHeightField {
 
   // z_W (down, metres) of the bare seabed at (north, east).
   double z(double north_m, double east_m) const {
-    return config_.seabed_depth_m - elevation(north_m, east_m);
+    const double relief_z = config_.seabed_depth_m - elevation(north_m, east_m);
+    // Skipped rather than added as zero, so that an unsloped seabed keeps its bits.
+    if (!has_slope_) return relief_z;
+    return relief_z + slope_north_ * (north_m - config_.pivot_north_m) +
+           slope_east_ * (east_m - config_.pivot_east_m);
   }
   // Height of the bare seabed above seabed_depth_m (up, metres).
   double elevation(double north_m, double east_m) const;
@@ -74,6 +81,9 @@ class SeabedHeightField {
   double ridge_cos_ = 1.0, ridge_sin_ = 0.0;  // crest direction is (sin, cos) in (north, east)
   double ridge_height_m_ = 0.0;
   double ridge_half_width_m_ = 0.0;
+  // The slope's plane in the build frame: d z / d north and d z / d east.
+  bool has_slope_ = false;
+  double slope_north_ = 0.0, slope_east_ = 0.0;
 };
 
 }  // namespace hsmap

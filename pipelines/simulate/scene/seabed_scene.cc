@@ -310,6 +310,22 @@ SeabedScene buildSeabedScene(const SeabedSceneConfig& config) {
     // A seed for the rocks that differs from the height field's draws.
     appendRocks(field, scene, config.seed ^ 0x5eabed5cee5eedULL);
   }
+  // Built in the track's frame, so that the rugged features stay under the
+  // track at any heading; turned into W last. A rotation about the vertical
+  // keeps the triangles' winding (normals still point out). Skipped at 0 so
+  // that the default scene keeps its bits.
+  if (config.heading_deg != 0.0) {
+    const double heading = config.heading_deg * kPi / 180.0;
+    const double cos_h = std::cos(heading);
+    const double sin_h = std::sin(heading);
+    tbb::parallel_for(std::size_t(0), scene.vertices.size(), [&](std::size_t i) {
+      Eigen::Vector3d& v = scene.vertices[i];
+      const double north = v.x() - config.pivot_north_m;
+      const double east = v.y() - config.pivot_east_m;
+      v.x() = config.pivot_north_m + cos_h * north - sin_h * east;
+      v.y() = config.pivot_east_m + sin_h * north + cos_h * east;
+    });
+  }
   return scene;
 }
 

@@ -21,6 +21,9 @@
 //         cannot hold. Both lie inside the corridor.
 //     No rock rises more than 1 m above the seabed around it.
 //   flat and low-relief scenes have no rocks.
+//   Everything above is in the build frame (seabed_scene_config.h); a
+//   heading_deg turns the finished scene about the pivot into W, and a slope
+//   tilts the height field, so rocks placed on it move with it.
 //
 // Winding: triangle (a, b, c) has the outward normal (b - a) x (c - a).
 // Vertices and triangles are listed grid first (row by row, north index

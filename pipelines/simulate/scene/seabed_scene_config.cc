@@ -32,6 +32,13 @@ void SeabedSceneConfig::validate() const {
   requireFinite("east_max_m", east_max_m);
   requireFinite("seabed_depth_m", seabed_depth_m);
   requireFinite("cell_m", cell_m);
+  requireFinite("heading_deg", heading_deg);
+  requireFinite("pivot_north_m", pivot_north_m);
+  requireFinite("pivot_east_m", pivot_east_m);
+  requireFinite("slope_direction_deg", slope_direction_deg);
+  if (!(slope_deg >= 0.0 && slope_deg < 80.0)) {
+    fail("slope_deg must be in [0, 80), got " + text(slope_deg));
+  }
   if (!(north_max_m > north_min_m)) {
     fail("north_max_m must be greater than north_min_m, got " + text(north_min_m) + " .. " +
          text(north_max_m));

@@ -119,7 +119,7 @@ TEST_F(SimulationConfigYaml, ErrorsNameTheFileLineAndKey) {
   EXPECT_EQ(errorOf("format: hsmap-simulation/1\npreset: tiny\nmotion: {lenght_m: 3}\n"),
             file + ":line 3, key motion.lenght_m: unknown key; expected one of: pattern, "
                    "length_m, speed_m_s, speed_variation, altitude_m, roll_pitch_amplitude_deg, "
-                   "heading_wander_deg, lanes, lane_spacing_m");
+                   "heading_wander_deg, lanes, lane_spacing_m, heading_deg");
   EXPECT_EQ(errorOf("format: hsmap-simulation/1\npreset: tiny\noptics: {shadows: maybe}\n"),
             file + ":line 3, key optics.shadows: expected true or false, got 'maybe'");
   EXPECT_EQ(errorOf("format: hsmap-simulation/1\npreset: tiny\nscene: {terrain: hilly}\n"),
@@ -130,6 +130,78 @@ TEST_F(SimulationConfigYaml, ErrorsNameTheFileLineAndKey) {
             file + ":line 1, key format: expected hsmap-simulation/1, got 'hsmap-simulation/2'");
   EXPECT_EQ(errorOf("format: hsmap-simulation/1\npreset: tiny\nmotion: {altitude_m: 0.2}\n"),
             file + ": simulation setting motion.altitude_m: expected an altitude in [0.5, 10] m");
+}
+
+TEST_F(SimulationConfigYaml, NewSettingsDefaultToThePresetsBehaviour) {
+  const SimulationConfig config =
+      readSimulationConfig(write("format: hsmap-simulation/1\npreset: rugged\n"));
+  EXPECT_EQ(config.motion.heading_deg, 0.0);
+  EXPECT_EQ(config.scene.slope_deg, 0.0);
+  EXPECT_EQ(config.scene.slope_direction_deg, 0.0);
+  EXPECT_TRUE(config.ins.attitude);
+  EXPECT_TRUE(config.rgb.blackouts.empty());
+}
+
+TEST_F(SimulationConfigYaml, ReadsHeadingSlopeAttitudeAndBlackouts) {
+  const SimulationConfig config = readSimulationConfig(write(
+      "format: hsmap-simulation/1\n"
+      "preset: low-relief\n"
+      "scene: {slope_deg: 12, slope_direction_deg: 125}\n"
+      "motion: {heading_deg: 35}\n"
+      "ins: {attitude: false}\n"
+      "rgb:\n"
+      "  blackouts:\n"
+      "    - {start_s: 10, duration_s: 0.32}\n"
+      "    - {start_s: 20.5, duration_s: 2}\n"));
+  EXPECT_DOUBLE_EQ(config.scene.slope_deg, 12.0);
+  EXPECT_DOUBLE_EQ(config.scene.slope_direction_deg, 125.0);
+  EXPECT_DOUBLE_EQ(config.motion.heading_deg, 35.0);
+  EXPECT_FALSE(config.ins.attitude);
+  ASSERT_EQ(config.rgb.blackouts.size(), 2u);
+  EXPECT_DOUBLE_EQ(config.rgb.blackouts[0].start_s, 10.0);
+  EXPECT_DOUBLE_EQ(config.rgb.blackouts[0].duration_s, 0.32);
+  EXPECT_DOUBLE_EQ(config.rgb.blackouts[1].start_s, 20.5);
+  EXPECT_DOUBLE_EQ(config.rgb.blackouts[1].duration_s, 2.0);
+  // The camera keeps the preset's size: blackouts alone do not replace it.
+  EXPECT_EQ(config.rgb.camera.width, 960);
+}
+
+TEST_F(SimulationConfigYaml, NewSettingsOutOfRangeNameTheFileLineAndKey) {
+  const std::string file = (folder_.path() / "sim.yaml").string();
+  const std::string head = "format: hsmap-simulation/1\npreset: tiny\n";
+  EXPECT_EQ(errorOf(head + "motion: {heading_deg: 400}\n"),
+            file + ":line 3, key motion.heading_deg: expected a number in [-360, 360], got 400");
+  EXPECT_EQ(errorOf(head + "scene: {slope_deg: 50}\n"),
+            file + ":line 3, key scene.slope_deg: expected a number in [0, 45], got 50");
+  EXPECT_EQ(errorOf(head + "scene: {slope_deg: -1}\n"),
+            file + ":line 3, key scene.slope_deg: expected a number in [0, 45], got -1");
+  EXPECT_EQ(errorOf(head + "scene: {slope_direction_deg: -361}\n"),
+            file + ":line 3, key scene.slope_direction_deg: expected a number in [-360, 360], "
+                   "got -361");
+  EXPECT_EQ(errorOf(head + "ins: {attitude: no}\n"),
+            file + ":line 3, key ins.attitude: expected true or false, got 'no'");
+  EXPECT_EQ(errorOf(head + "rgb: {blackouts: 3}\n"),
+            file + ":line 3, key rgb.blackouts: expected a list of {start_s, duration_s}, got '3'");
+  EXPECT_EQ(errorOf(head + "rgb:\n  blackouts:\n    - {start_s: 1, duration_s: 1}\n"
+                           "    - {start_s: 2, duration_s: 0}\n"),
+            file + ":line 6, key rgb.blackouts[1].duration_s: expected a number > 0, got 0");
+  EXPECT_EQ(errorOf(head + "rgb:\n  blackouts:\n    - {start_s: -1, duration_s: 1}\n"),
+            file + ":line 5, key rgb.blackouts[0].start_s: expected a number in [0, 1e+06], got -1");
+  EXPECT_EQ(errorOf(head + "rgb:\n  blackouts:\n    - {start: 1, duration_s: 1}\n"),
+            file + ":line 5, key rgb.blackouts[0].start: unknown key; expected one of: start_s, "
+                   "duration_s");
+}
+
+TEST(SimulationPresets, ValidationRejectsOutOfRangeNewSettings) {
+  SimulationConfig config = *simulationPreset("tiny");
+  config.rgb.blackouts.push_back({-0.5, 1.0});
+  EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
+  config = *simulationPreset("tiny");
+  config.scene.slope_deg = 46.0;
+  EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
+  config = *simulationPreset("tiny");
+  config.motion.heading_deg = -361.0;
+  EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
 }
 
 // The simulation files the docs' benchmarks are made from stay readable as

@@ -25,6 +25,33 @@ TEST(LanePathTest, TransectIsAStraightLineNorth) {
   EXPECT_EQ(path.at(25.0).north_m, 25.0);
 }
 
+// A first-lane heading turns the whole path, U-turns included, about its
+// start: every point is the north-heading path's point rotated there.
+TEST(LanePathTest, HeadingTurnsTheWholePathAboutItsStart) {
+  const double heading_deg = 35.0;
+  const LanePath north(10.0, 3, 2.0, 1.0, 4.0);
+  const LanePath turned(10.0, 3, 2.0, 1.0, 4.0, heading_deg);
+  EXPECT_EQ(turned.length(), north.length());
+  const double h = heading_deg * kPi / 180.0;
+  for (double s = 0.0; s <= north.length(); s += 0.37) {
+    const PathPoint a = north.at(s);
+    const PathPoint b = turned.at(s);
+    const double dn = a.north_m - 1.0, de = a.east_m - 4.0;
+    EXPECT_NEAR(b.north_m, 1.0 + std::cos(h) * dn - std::sin(h) * de, 1e-12) << "s " << s;
+    EXPECT_NEAR(b.east_m, 4.0 + std::sin(h) * dn + std::cos(h) * de, 1e-12) << "s " << s;
+    EXPECT_NEAR(b.heading_rad, a.heading_rad + h, 1e-12) << "s " << s;
+  }
+  // The first lane runs along the heading; the second starts to its right.
+  const PathPoint end_of_first = turned.at(10.0);
+  EXPECT_NEAR(std::atan2(end_of_first.east_m - 4.0, end_of_first.north_m - 1.0), h, 1e-12);
+  const PathPoint second = turned.at(10.0 + turned.turnLength());
+  const double right_n = -std::sin(h), right_e = std::cos(h);
+  EXPECT_NEAR((second.north_m - end_of_first.north_m) * right_n +
+                  (second.east_m - end_of_first.east_m) * right_e,
+              2.0, 1e-9);
+  EXPECT_THROW(LanePath(10.0, 1, 2.0, 0.0, 0.0, NAN), std::invalid_argument);
+}
+
 TEST(LanePathTest, LawnmowerLanesAlternateAndTurnsLandOnTheNextLane) {
   const double length = 10.0, spacing = 2.0;
   const LanePath path(length, 3, spacing, 1.0, 4.0);

@@ -272,6 +272,67 @@ void expectRejected(const SeabedSceneConfig& config, const char* message) {
   }
 }
 
+// A slope adds a plane to the height field: every grid vertex moves by it
+// exactly, and each rock by the plane somewhere under it (rocks rest on the
+// deepest seabed point below them), so within tan(slope) x 1.5 m of the plane
+// at its own place.
+TEST(SeabedScene, SlopeTiltsTheSeabedAndTheRocksMoveWithIt) {
+  SeabedSceneConfig config;
+  config.north_min_m = -3.0;
+  config.north_max_m = 9.0;
+  config.cell_m = 0.05;
+  const SeabedScene level = buildSeabedScene(config);
+  config.slope_deg = 20.0;
+  config.slope_direction_deg = 30.0;  // downhill north-north-east
+  const SeabedScene sloped = buildSeabedScene(config);
+  ASSERT_EQ(level.vertices.size(), sloped.vertices.size());
+  ASSERT_EQ(level.triangles, sloped.triangles);
+  const double gradient = std::tan(20.0 * kPi / 180.0);
+  const Eigen::Vector2d downhill(std::cos(30.0 * kPi / 180.0), std::sin(30.0 * kPi / 180.0));
+  auto plane = [&](const Eigen::Vector3d& p) { return gradient * downhill.dot(p.head<2>()); };
+  std::size_t grid_vertices = 0;
+  while (grid_vertices < level.vertices.size() &&
+         std::abs(sloped.vertices[grid_vertices].z() - level.vertices[grid_vertices].z() -
+                  plane(level.vertices[grid_vertices])) < 1e-9) {
+    ++grid_vertices;
+  }
+  // The grid is listed first: (12 / 0.05 + 1) x (6 / 0.05 + 1) vertices.
+  EXPECT_EQ(grid_vertices, std::size_t(241 * 121));
+  ASSERT_LT(grid_vertices, level.vertices.size());  // rugged: rocks follow
+  for (std::size_t i = grid_vertices; i < level.vertices.size(); ++i) {
+    // Rocks stay where they were drawn; only the leaning slab, whose tilt
+    // follows the seabed between its foot and its support, shifts a little.
+    EXPECT_LT((sloped.vertices[i] - level.vertices[i]).head<2>().norm(), 0.3) << "vertex " << i;
+    EXPECT_NEAR(sloped.vertices[i].z() - level.vertices[i].z(), plane(level.vertices[i]),
+                gradient * 1.5)
+        << "vertex " << i;
+  }
+}
+
+// A heading turns the finished scene about the pivot: the same vertices,
+// rotated clockwise, same triangles.
+TEST(SeabedScene, HeadingTurnsTheSceneAboutThePivot) {
+  SeabedSceneConfig config;
+  config.north_min_m = -3.0;
+  config.north_max_m = 6.0;
+  config.cell_m = 0.05;
+  const SeabedScene north = buildSeabedScene(config);
+  config.heading_deg = -70.0;
+  config.pivot_north_m = 1.0;
+  config.pivot_east_m = -0.5;
+  const SeabedScene turned = buildSeabedScene(config);
+  ASSERT_EQ(north.vertices.size(), turned.vertices.size());
+  ASSERT_EQ(north.triangles, turned.triangles);
+  const double h = -70.0 * kPi / 180.0;
+  for (std::size_t i = 0; i < north.vertices.size(); i += 7) {
+    const Eigen::Vector3d& p = north.vertices[i];
+    const double dn = p.x() - 1.0, de = p.y() + 0.5;
+    EXPECT_NEAR(turned.vertices[i].x(), 1.0 + std::cos(h) * dn - std::sin(h) * de, 1e-9);
+    EXPECT_NEAR(turned.vertices[i].y(), -0.5 + std::sin(h) * dn + std::cos(h) * de, 1e-9);
+    EXPECT_EQ(turned.vertices[i].z(), p.z());
+  }
+}
+
 TEST(SeabedScene, RejectsInvalidConfigsSayingWhatWasExpected) {
   SeabedSceneConfig config;
   config.north_max_m = -3.0;
