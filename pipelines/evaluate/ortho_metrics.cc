@@ -2,6 +2,7 @@
 
 #include "core/io/envi_ignore_value.h"
 #include "pipelines/evaluate/band_limited_phase_correlation.h"
+#include "pipelines/evaluate/ortho_coarse_similarity.h"
 #include "pipelines/evaluate/ortho_raster_grid.h"
 
 #include <tbb/blocked_range.h>
@@ -233,10 +234,12 @@ PatchResult measurePatch(const cv::Mat& truth_mean, const cv::Mat& produced_mean
 // The first match found again on the window shifted diagonally by a quarter
 // patch (ortho_metrics.h, step 3): the first direction inside the raster
 // with data decides.
+// Displacements are compared after the coarse warp's linear part
+// `warp_rc` (on (row, col) pixel vectors): as differences on the truth grid.
 bool confirmMatch(const PatchResult& first, const cv::Mat& truth_mean, const cv::Mat& produced_mean,
                   const ProducedLookup& lookup, const cv::Mat& hann, int r0, int c0, int side,
                   const Eigen::Vector2d& start_px, double pixel_m, double tolerance_px,
-                  const OrthoMetricsOptions& options) {
+                  const Eigen::Matrix2d& warp_rc, const OrthoMetricsOptions& options) {
   const int quarter = std::max(1, side / 4);
   for (const auto& [dr, dc] : {std::pair{1, 1}, std::pair{1, -1}, std::pair{-1, 1}, std::pair{-1, -1}}) {
     const int r = r0 + dr * quarter, c = c0 + dc * quarter;
@@ -244,7 +247,8 @@ bool confirmMatch(const PatchResult& first, const cv::Mat& truth_mean, const cv:
     const PatchResult second =
         measurePatch(truth_mean, produced_mean, lookup, hann, r, c, side, start_px, pixel_m, options);
     if (!second.has_data) continue;
-    return second.matched && (second.displacement_px - first.displacement_px).norm() <= tolerance_px;
+    return second.matched &&
+           (warp_rc * (second.displacement_px - first.displacement_px)).norm() <= tolerance_px;
   }
   return false;
 }
@@ -406,6 +410,7 @@ void OrthoMetricsOptions::validate() const {
   require(std::isfinite(reference_down_m), "reference_down_m must be finite");
   require(std::isfinite(correlation_cutoff_m) && correlation_cutoff_m >= 0.0,
           "correlation_cutoff_m must be finite and >= 0");
+  coarse_similarity.validate();
 }
 
 std::string OrthoMetrics::summary() const {
@@ -413,6 +418,10 @@ std::string OrthoMetrics::summary() const {
   out << "ortho: " << patches << " patches of " << patch_pixels << " px, " << patches_with_data
       << " with data, " << patches_matched << " matched";
   if (patches_unconfirmed > 0) out << " (" << patches_unconfirmed << " more not confirmed)";
+  if (coarse_scale && coarse_rotation_deg) {
+    out << "; coarse similarity: scale " << *coarse_scale << ", rotation " << *coarse_rotation_deg
+        << " deg (" << coarse_feature_inliers << " of " << coarse_feature_matches << " feature matches)";
+  }
   if (coarse_shift_NE) {
     out << "; coarse shift (north, east) = (" << coarse_shift_NE->x() << ", " << coarse_shift_NE->y()
         << ") m";
@@ -476,11 +485,54 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
           ? MetricValue::of(static_cast<double>(metrics.covered_pixels) / metrics.footprint_pixels)
           : MetricValue::missing("truth/reflectance has no valid pixel: the footprint is empty");
 
-  // Registration.
+  // Registration. The coarse stage (header comment, step 2): the patches
+  // look the produced image up through the coarse similarity S0 (W's
+  // (east, north): a -> A_W a + b_W; the identity without one) and start
+  // from the residual whole-image shift start_px.
   Eigen::Vector2d start_px = Eigen::Vector2d::Zero();  // (d_row, d_col)
-  if (const auto coarse = coarseShift(truth_mean, produced_on_truth, options)) {
+  Eigen::Matrix2d A_W = Eigen::Matrix2d::Identity();
+  Eigen::Vector2d b_W = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d warp_rc = Eigen::Matrix2d::Identity();  // S0's linear part on (row, col) pixels
+  std::optional<ProducedLookup> warped;
+  std::optional<CoarseSimilarity> coarse_similarity;
+  if (options.use_coarse_similarity) {
+    coarse_similarity = estimateCoarseSimilarity(truth_mean, produced_on_truth, options.coarse_similarity);
+  }
+  bool coarse_found = false;
+  if (coarse_similarity) {
+    // From truth pixels (column, row), p -> A p + b, to W: a = G p + g.
+    const Eigen::Matrix2d G = Eigen::Vector2d(truth.px, -truth.py).asDiagonal();
+    const Eigen::Vector2d g = truth.centre(0, 0);
+    A_W = G * coarse_similarity->A * G.inverse();
+    b_W = G * coarse_similarity->b + g - A_W * g;
+    warp_rc << coarse_similarity->A(1, 1), coarse_similarity->A(1, 0), coarse_similarity->A(0, 1),
+        coarse_similarity->A(0, 0);
+    warped.emplace(truth, produced, utm, options.reference_down_m, A_W, b_W);
+    cv::Mat produced_warped(truth.rows, truth.cols, CV_32F);
+    tbb::parallel_for(0, truth.rows, [&](int r) {
+      float* out = produced_warped.ptr<float>(r);
+      for (int c = 0; c < truth.cols; ++c) out[c] = static_cast<float>(sampleBilinear(produced_mean, warped->at(r, c)));
+    });
+    if (const auto residual = coarseShift(truth_mean, produced_warped, options)) start_px = *residual;
+    metrics.coarse_scale = coarse_similarity->scale();
+    metrics.coarse_rotation_deg = std::atan2(A_W(1, 0), A_W(0, 0)) * 180.0 / std::numbers::pi;
+    metrics.coarse_feature_matches = coarse_similarity->matches;
+    metrics.coarse_feature_inliers = coarse_similarity->inliers;
+    coarse_found = true;
+  } else if (const auto coarse = coarseShift(truth_mean, produced_on_truth, options)) {
     start_px = *coarse;
-    metrics.coarse_shift_NE = Eigen::Vector2d(-coarse->x() * truth.py, coarse->y() * truth.px);
+    coarse_found = true;
+  }
+  const ProducedLookup& patch_lookup = warped ? *warped : as_placed;
+  // W (east, north) where the content at a lies in the produced map, given
+  // the displacement (d_row, d_col) its patch measured on the warped image.
+  const auto producedPosition = [&](const Eigen::Vector2d& a_EN, const Eigen::Vector2d& d_px) {
+    return Eigen::Vector2d(A_W * (a_EN + Eigen::Vector2d(d_px.y() * truth.px, -d_px.x() * truth.py)) + b_W);
+  };
+  if (coarse_found) {
+    const Eigen::Vector2d middle = truth.centre(0.5 * (truth.rows - 1), 0.5 * (truth.cols - 1));
+    const Eigen::Vector2d shift_EN = producedPosition(middle, start_px) - middle;
+    metrics.coarse_shift_NE = Eigen::Vector2d(shift_EN.y(), shift_EN.x());
   }
   const int side = std::max(options.min_patch_pixels,
                             static_cast<int>(std::lround(options.patch_size_m / truth.px)));
@@ -495,8 +547,8 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
     tbb::parallel_for(tbb::blocked_range<int>(0, metrics.patches), [&](const tbb::blocked_range<int>& range) {
       for (int k = range.begin(); k != range.end(); ++k) {
         const int r0 = top + (k / patch_cols) * side, c0 = left + (k % patch_cols) * side;
-        results[static_cast<std::size_t>(k)] = measurePatch(truth_mean, produced_mean, as_placed, hann, r0,
-                                                            c0, side, start_px, truth.px, options);
+        results[static_cast<std::size_t>(k)] = measurePatch(truth_mean, produced_mean, patch_lookup, hann,
+                                                            r0, c0, side, start_px, truth.px, options);
       }
     });
   }
@@ -511,8 +563,8 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
         if (!first.matched) continue;
         const int r0 = top + (k / patch_cols) * side, c0 = left + (k % patch_cols) * side;
         confirmed[static_cast<std::size_t>(k)] =
-            confirmMatch(first, truth_mean, produced_mean, as_placed, hann, r0, c0, side, start_px,
-                         truth.px, tolerance_px, options);
+            confirmMatch(first, truth_mean, produced_mean, patch_lookup, hann, r0, c0, side, start_px,
+                         truth.px, tolerance_px, warp_rc, options);
       }
     });
     for (std::size_t k = 0; k < results.size(); ++k) {
@@ -529,9 +581,10 @@ OrthoMetrics measureOrtho(const std::filesystem::path& produced_hdr,
     if (!result.matched) continue;
     const int r0 = top + (k / patch_cols) * side, c0 = left + (k % patch_cols) * side;
     const Eigen::Vector2d centre_EN = truth.centre(r0 + 0.5 * (side - 1), c0 + 0.5 * (side - 1));
-    const Eigen::Vector2d d_EN(result.displacement_px.y() * truth.px, -result.displacement_px.x() * truth.py);
+    const Eigen::Vector2d moved = producedPosition(centre_EN, result.displacement_px);
+    const Eigen::Vector2d d_EN = moved - centre_EN;
     centres_EN.push_back(centre_EN);
-    moved_EN.push_back(centre_EN + d_EN);
+    moved_EN.push_back(moved);
     OrthoPatchMatch match;
     match.centre_NE = Eigen::Vector2d(centre_EN.y(), centre_EN.x());
     match.displacement_NE = Eigen::Vector2d(d_EN.y(), d_EN.x());

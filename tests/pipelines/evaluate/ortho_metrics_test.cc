@@ -464,6 +464,112 @@ TEST(OrthoMetrics, ADisplacementSmallerThanAPatchIsNotConfirmed) {
   }
 }
 
+// A 2-D similarity of W (north, east): content at x lies at c + s R (x - c) + t,
+// R turning (north, east) by theta.
+struct KnownSimilarity {
+  double scale = 1.0, theta_deg = 0.0;
+  Eigen::Vector2d centre_NE = Eigen::Vector2d::Zero(), shift_NE = Eigen::Vector2d::Zero();
+
+  Eigen::Matrix2d rotation() const {
+    const double th = theta_deg * std::numbers::pi / 180.0;
+    return (Eigen::Matrix2d() << std::cos(th), -std::sin(th), std::sin(th), std::cos(th)).finished();
+  }
+  Eigen::Vector2d apply(const Eigen::Vector2d& x) const {
+    return centre_NE + scale * rotation() * (x - centre_NE) + shift_NE;
+  }
+  Eigen::Vector2d inverse(const Eigen::Vector2d& y) const {
+    return centre_NE + rotation().transpose() * (y - centre_NE - shift_NE) / scale;
+  }
+};
+
+// A map scale error far beyond what a whole-image shift can start the patches
+// from (ortho_metrics.h, step 2): at 15 % the patches 1 m from the scale's
+// centre are displaced by 15 cm and their content stretched by 4.5 cm. With
+// the coarse similarity every patch is matched, and the figures are those of
+// the similarity itself: its scale, a registration error of ~0, and each
+// patch's displacement S(a) - a.
+TEST(OrthoMetrics, LargeScaleErrorAndRotationAreRegistered) {
+  for (const double scale : {1.15, 0.87}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    Rasters rasters;
+    writeTruth(rasters.truth, always(mixedSeabed));
+    KnownSimilarity S;
+    S.scale = scale;
+    S.theta_deg = 3.0;
+    S.centre_NE = Eigen::Vector2d(0.35, 1.4);  // off the truth's centre (0.6, 1.0)
+    S.shift_NE = Eigen::Vector2d(0.03, -0.05);
+    writeProduced(rasters.produced,
+                  warped(always(mixedSeabed), [&](const Eigen::Vector2d& y) { return S.inverse(y); }));
+    const OrthoMetrics metrics = measure(rasters);
+    ASSERT_TRUE(metrics.ortho_registration_rmse_m.value) << metrics.ortho_registration_rmse_m.reason;
+    ASSERT_TRUE(metrics.coarse_scale);
+    EXPECT_NEAR(*metrics.coarse_scale, scale, 0.02);
+    EXPECT_GE(metrics.patches_matched, 0.9 * metrics.patches_with_data);
+    EXPECT_NEAR(*metrics.ortho_scale_error.value, std::abs(scale - 1.0), 0.005);
+    EXPECT_LT(*metrics.ortho_registration_rmse_m.value, kRmseFloor);
+    ASSERT_TRUE(metrics.rotation_deg);
+    EXPECT_NEAR(std::abs(*metrics.rotation_deg), 3.0, 0.05);
+    Eigen::Vector2d mean_d = Eigen::Vector2d::Zero();
+    for (const OrthoPatchMatch& match : metrics.matches) {
+      const Eigen::Vector2d expected = S.apply(match.centre_NE) - match.centre_NE;
+      EXPECT_LT((match.displacement_NE - expected).norm(), 0.003) << match.centre_NE.transpose();
+      mean_d += expected;
+    }
+    mean_d /= static_cast<double>(metrics.matches.size());
+    EXPECT_NEAR(*metrics.ortho_mean_shift_m.value, mean_d.norm(), 0.002);
+    // Spectra and coverage at the registered position.
+    EXPECT_TRUE(metrics.sam_registered);
+    EXPECT_LT(*metrics.ortho_sam_deg.value, 0.5);
+  }
+}
+
+// The coarse similarity only starts the patches: a map's local distortion is
+// measured through an 11 % scale as it is without one. The distortion w is
+// the map's own (in map metres): content at x lies at z + w(z), z = S(x),
+// against x + w(x) without the scale. (Had the distortion been scaled with
+// the map, content at S(x + w(x)), its residual would be s |w|:
+// ortho_registration_rmse_m is in the produced map's metres.) w turns
+// through a plane wave of ~0.6 m with a constant length of 4 mm, so that its
+// RMS does not depend on where the patches sample it (with and without the
+// scale they sample it at different places).
+TEST(OrthoMetrics, LocalDistortionIsMeasuredThroughALargeScaleError) {
+  constexpr double kAmplitude = 0.004;
+  const auto wobble = [](const Eigen::Vector2d& z) {
+    const double phase = 2 * std::numbers::pi * (z.x() / 0.8 + z.y() / 1.0);
+    return Eigen::Vector2d(kAmplitude * std::sin(phase), kAmplitude * std::cos(phase));
+  };
+  // y = z + w(z) solved for z (w is a contraction: |grad w| ~ 0.03).
+  const auto unwobble = [&](const Eigen::Vector2d& y) {
+    Eigen::Vector2d z = y;
+    for (int i = 0; i < 6; ++i) z = y - wobble(z);
+    return z;
+  };
+  KnownSimilarity S;
+  S.scale = 1.11;
+  S.centre_NE = Eigen::Vector2d(0.6, 1.0);
+  S.shift_NE = Eigen::Vector2d(-0.02, 0.04);
+
+  Rasters distorted;
+  writeTruth(distorted.truth, always(mixedSeabed));
+  writeProduced(distorted.produced, warped(always(mixedSeabed), unwobble));
+  const OrthoMetrics without_scale = measure(distorted);
+
+  Rasters scaled;
+  writeTruth(scaled.truth, always(mixedSeabed));
+  writeProduced(scaled.produced, warped(always(mixedSeabed),
+                                        [&](const Eigen::Vector2d& y) { return S.inverse(unwobble(y)); }));
+  const OrthoMetrics with_scale = measure(scaled);
+
+  ASSERT_TRUE(without_scale.ortho_registration_rmse_m.value) << without_scale.ortho_registration_rmse_m.reason;
+  ASSERT_TRUE(with_scale.ortho_registration_rmse_m.value) << with_scale.ortho_registration_rmse_m.reason;
+  const double reference = *without_scale.ortho_registration_rmse_m.value;
+  // Well above the metric's noise (kRmseFloor), so that 10 % means something.
+  EXPECT_GT(reference, 0.002);
+  EXPECT_NEAR(*with_scale.ortho_registration_rmse_m.value, reference, 0.1 * reference);
+  EXPECT_NEAR(*with_scale.ortho_scale_error.value, 0.11, 0.005);
+  EXPECT_LT(*without_scale.ortho_scale_error.value, 0.005);
+}
+
 TEST(OrthoMetrics, ProducedRasterInAnotherZoneIsAnInputError) {
   Rasters rasters;
   writeTruth(rasters.truth, always(mixedSeabed));
