@@ -35,6 +35,7 @@
 
 #include "core/geometry/se3.h"
 #include "core/survey/ins_body_track.h"
+#include "pipelines/georef/ins_noise.h"
 #include "pipelines/frontend/visual_map.h"
 #include "solvers/graph_solver.h"
 
@@ -47,21 +48,6 @@ struct InsFixLink {
   int fix = -1;       // index into InsBodyTrack::fixes()
   int keyframe = -1;  // keyframe id in the map
   SE3d T_K_C;         // camera at the fix time, relative to the keyframe (W units)
-};
-
-struct InsNoise {
-  double sigma_horizontal_m = 0.5;  // one fix's error, as survey.yaml states it
-  double sigma_depth_m = 0.05;
-  // The position factors' sigmas are these times the factor (>= 1): fixes
-  // whose errors are correlated in time count less together
-  // (GeorefOptions::ins_correlation_time_s). The faulty-fix test uses the
-  // sigmas above: it asks whether one fix is far off, not the track.
-  double position_correlation_factor = 1.0;
-  Eigen::Vector3d sigma_attitude_rad = Eigen::Vector3d::Constant(1e-3);
-  // Without INS attitude: an ROV flies level within a few degrees, and its
-  // heading follows its track within a crab angle.
-  double assumed_level_sigma_rad = 5.0 * M_PI / 180.0;
-  double assumed_heading_sigma_rad = 30.0 * M_PI / 180.0;
 };
 
 struct GeorefBundleOptions {

@@ -97,6 +97,7 @@ void writeGeorefOutputs(const fs::path& folder, const GeorefResult& result, cons
     cloud.vertices = result.landmarks_W;
     writePly(staging / georef_files::sparse_ply, cloud);
   }
+  if (result.placement) writeMapPlacement(staging / georef_files::map_placement, *result.placement);
   std::string summary = result.summary() + "\n";
   for (const auto& warning : result.warnings) summary += "warning: " + warning + "\n";
   writeTextAtomically(staging / georef_files::summary, summary);
@@ -147,6 +148,9 @@ GeorefResult readGeorefOutputs(const fs::path& folder) {
     }
   }
   if (fs::exists(folder / visual_map_files::keyframes)) result.map_W = readVisualMapFiles(folder);
+  if (fs::exists(folder / georef_files::map_placement)) {
+    result.placement = readMapPlacement(folder / georef_files::map_placement);
+  }
   for (const Landmark& landmark : result.map_W.landmarks()) {
     if (landmark.valid) result.landmarks_W.push_back(landmark.p_F);
   }

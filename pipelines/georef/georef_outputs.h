@@ -17,6 +17,8 @@
 //                        the adjusted map in W (visual_map_files.h); absent
 //                        without one (planar)
 //   sparse.ply           the adjusted landmarks in W (when there are any)
+//   map_placement.yaml   the 1-sigma of the map's scale and placement from the
+//                        INS (map_placement.h); sequential only
 //   summary.txt          the stage's summary, for people
 //
 // The run publishes the contract's files (trajectory/frames.csv, ...,
@@ -46,6 +48,7 @@ inline constexpr const char* calibration = "calibration.yaml";
 inline constexpr const char* rejected_fixes = "rejected_fixes.csv";
 inline constexpr const char* sparse_ply = "sparse.ply";
 inline constexpr const char* summary = "summary.txt";
+inline constexpr const char* map_placement = "map_placement.yaml";
 }  // namespace georef_files
 
 // The calibration.yaml written for `result` (its T_C_U and d; `warnings`
@@ -60,7 +63,8 @@ void writeGeorefOutputs(const std::filesystem::path& folder, const GeorefResult&
                         const RunCalibration& calibration);
 
 // Reads `folder` back: frames, lines and their sources, the map in W (and
-// landmarks_W from it), T_C_U and d from calibration.yaml, the rejected fixes.
+// landmarks_W from it), T_C_U and d from calibration.yaml, the rejected fixes,
+// the map's placement when the folder has it.
 // Not the alignment, the bundle report or the warnings. Throws InputError for
 // a missing or malformed file.
 GeorefResult readGeorefOutputs(const std::filesystem::path& folder);

@@ -66,6 +66,19 @@ std::string GeorefResult::summary() const {
     out << "  " << b.removed_observations
         << " observations beyond 3 px after the solve removed from the map\n";
   }
+  if (placement) {
+    const MapPlacement& p = *placement;
+    out << "  map placement (maximum likelihood on " << p.fixes << " INS fixes, "
+        << (p.attitude_measured ? "positions and attitude" : "positions, attitude assumed level")
+        << "): scale 1-sigma " << fixedDecimals(100.0 * p.scale_sigma, 2) << " %, rotation 1-sigma "
+        << fixedDecimals(p.rotation_sigma_deg[0], 3) << "/" << fixedDecimals(p.rotation_sigma_deg[1], 3)
+        << "/" << fixedDecimals(p.rotation_sigma_deg[2], 3) << " deg, position 1-sigma "
+        << fixedDecimals(p.position_sigma_m[0], 3) << "/" << fixedDecimals(p.position_sigma_m[1], 3)
+        << "/" << fixedDecimals(p.position_sigma_m[2], 3) << " m (N/E/D); correction after the "
+        << "adjustment: scale " << fixedDecimals(p.correction_scale, 5) << ", "
+        << fixedDecimals(p.correction_rotation_deg, 4) << " deg, "
+        << fixedDecimals(p.correction_translation_m, 4) << " m\n";
+  }
   if (rejected_fixes.empty()) {
     if (alignment) out << "  INS fixes left out: none\n";
   } else {

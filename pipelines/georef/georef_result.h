@@ -14,6 +14,7 @@
 #include "pipelines/georef/camera_trajectory.h"
 #include "pipelines/georef/georef_bundle_adjuster.h"
 #include "pipelines/georef/ins_alignment.h"
+#include "pipelines/georef/map_placement.h"
 
 namespace hsmap {
 
@@ -50,6 +51,8 @@ struct GeorefResult {
   double time_offset_s = 0.0;        // d used for the lines
   std::optional<InsAlignment> alignment;
   std::optional<GeorefBundleReport> bundle;
+  // sequential: how well the INS places and scales the map (map_placement.h).
+  std::optional<MapPlacement> placement;
   std::vector<RejectedFix> rejected_fixes;  // alignment and bundle adjustment
   FrameReposeCounts repose;
   std::vector<std::string> warnings;

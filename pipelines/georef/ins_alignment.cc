@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/geometry/rotation_anchored_alignment.h"
+#include "pipelines/georef/ins_similarity.h"
 
 namespace hsmap {
 namespace {
@@ -42,9 +43,9 @@ std::vector<T> selected(const std::vector<T>& values, const std::vector<bool>& k
 }  // namespace
 
 InsAlignment alignVisionToIns(const CameraTrajectory& vision_F, const InsBodyTrack& ins,
-                              const SE3d& T_B_C, double sigma_horizontal_m) {
+                              const SE3d& T_B_C, const InsNoise& noise) {
   InsAlignment result;
-  result.threshold_m = std::max(1.0, 4.0 * sigma_horizontal_m);
+  result.threshold_m = std::max(1.0, 4.0 * noise.sigma_horizontal_m);
   std::vector<SE3d> T_F_C;
   for (std::size_t i = 0; i < ins.fixes().size(); ++i) {
     if (!vision_F.visionCovers(ins.fixes()[i].t)) continue;
@@ -85,8 +86,19 @@ InsAlignment alignVisionToIns(const CameraTrajectory& vision_F, const InsBodyTra
     const InsBodyFix& fix = ins.fixes()[std::size_t(result.paired_fixes[k])];
     q_W_F.push_back(fix.q_W_B * T_B_C.q * T_F_C[k].q.conjugate());
   }
-  const Sim3 S = alignScaleTranslation(chordalMeanRotation(q_W_F), selected(p_F_C, result.inliers),
-                                       selected(p_W_C, result.inliers));
+  const Sim3 start = alignScaleTranslation(chordalMeanRotation(q_W_F),
+                                           selected(p_F_C, result.inliers),
+                                           selected(p_W_C, result.inliers));
+  std::vector<CameraAtFix> cameras;
+  for (std::size_t k = 0; k < result.paired_fixes.size(); ++k) {
+    if (result.inliers[k]) cameras.push_back({result.paired_fixes[k], T_F_C[k]});
+  }
+  try {
+    result.fit = fitMapToIns(cameras, ins, T_B_C, noise, start);
+  } catch (const std::invalid_argument& error) {
+    throw std::runtime_error(std::string("cannot geo-reference: ") + error.what());
+  }
+  const Sim3& S = result.fit.S_target_source;
   result.rotation_from = ins.hasAttitude() ? "INS attitude" : "level, along-track attitude (no INS attitude)";
   result.S_W_F = S;
   result.rms_m = classify(S, p_F_C, p_W_C, result.threshold_m, result.inliers, result.residuals_m,

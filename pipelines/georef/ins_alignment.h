@@ -15,14 +15,17 @@
 // alignment and reported by its ins.csv line. Smaller faults are left to the
 // bundle adjustment's test on each fix (georef_bundle_adjuster.h).
 //
-// Rotation. The rotation is the chordal mean of R_W_C(INS) R_F_C^T over the
-// inlier fixes, and only scale and translation come from the positions
-// (rotation_anchored_alignment.h): a straight transect's positions leave the
-// rotation about the track undetermined. R_W_C(INS) = R_W_B R_B_C uses the
-// INS attitude, or, when the INS has none, the level, along-track attitude
-// of ins_body_track.h (an ROV flies nearly level; its heading may differ
-// from its track by some crab angle, which the bundle adjustment's
-// positions then correct).
+// Maximum likelihood. The RANSAC fit treats every axis alike, so its scale
+// is decided by the horizontal positions (decimetres). From its inliers, a
+// start is made with the rotation from the attitudes (the chordal mean of
+// R_W_C(INS) R_F_C^T: a straight transect's positions leave the rotation
+// about the track undetermined) and scale and translation from the
+// positions (rotation_anchored_alignment.h); then the similarity is the
+// maximum-likelihood fit of ins_similarity.h: depths and attitude weigh as
+// their stated noise says, so on a short survey whose depth changes the
+// depths decide the scale from the first alignment on. R_W_C(INS) =
+// R_W_B R_B_C uses the INS attitude or, when the INS has none, the level,
+// along-track attitude of ins_body_track.h.
 
 #include <string>
 #include <vector>
@@ -31,6 +34,8 @@
 #include "core/geometry/sim3.h"
 #include "core/survey/ins_body_track.h"
 #include "pipelines/georef/camera_trajectory.h"
+#include "pipelines/georef/ins_noise.h"
+#include "solvers/similarity_fit.h"
 
 namespace hsmap {
 
@@ -43,12 +48,13 @@ struct InsAlignment {
   double rms_m = 0.0;              // camera-position residual over the inliers, metres
   double threshold_m = 0.0;
   std::string rotation_from;       // "INS attitude" or "level, along-track attitude (no INS attitude)"
+  SimilarityFit fit;               // the maximum-likelihood fit on the inliers, with its covariance
 };
 
 // `vision_F`: the front-end's posed frames in F (no INS bridging).
 // Throws std::runtime_error when fewer than 3 fixes fall within vision or no
 // consistent similarity exists (naming how many pairs there were).
 InsAlignment alignVisionToIns(const CameraTrajectory& vision_F, const InsBodyTrack& ins,
-                              const SE3d& T_B_C, double sigma_horizontal_m);
+                              const SE3d& T_B_C, const InsNoise& noise);
 
 }  // namespace hsmap

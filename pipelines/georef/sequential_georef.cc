@@ -11,6 +11,7 @@
 #include "pipelines/georef/camera_trajectory.h"
 #include "pipelines/georef/frame_reposer.h"
 #include "pipelines/georef/ins_alignment.h"
+#include "pipelines/georef/ins_similarity.h"
 #include "pipelines/georef/scan_line_poses.h"
 
 namespace hsmap {
@@ -70,6 +71,48 @@ int segmentAt(const VisionFrames& frames, const FrontendResult& frontend, double
   return frontend.frames[std::size_t(frames.record[j])].segment;
 }
 
+// The map's scale and placement by maximum likelihood on the fixes the
+// adjustment kept, with the noise survey.yaml states (ins_similarity.h). The
+// adjustment's position sigmas are inflated for the INS's correlated wander
+// (GeorefOptions::ins_correlation_time_s), which is right for the shape but
+// weighs the attitude (or its level prior) against the positions otherwise
+// than the survey states; the shape is kept and only this similarity moves
+// the whole map, so its scale is what the INS floor describes. Returns the
+// similarity's 1-sigma and the correction applied.
+MapPlacement placeMapOnIns(VisualMap& map, const std::vector<InsFixLink>& links,
+                           const std::vector<RejectedFix>& rejected, const InsBodyTrack& ins,
+                           const SE3d& T_B_C, const InsNoise& noise) {
+  std::vector<CameraAtFix> cameras;
+  for (const InsFixLink& link : links) {
+    const bool left_out = std::any_of(rejected.begin(), rejected.end(),
+                                      [&](const RejectedFix& r) { return r.fix == link.fix; });
+    if (!left_out) cameras.push_back({link.fix, map.keyframe(link.keyframe).T_F_C * link.T_K_C});
+  }
+  SimilarityFit fit;
+  try {
+    fit = fitMapToIns(cameras, ins, T_B_C, noise, Sim3::identity());
+  } catch (const std::invalid_argument& error) {
+    throw std::runtime_error(std::string("cannot place the map on the INS: ") + error.what());
+  }
+  const Sim3& S = fit.S_target_source;
+  for (const Keyframe& k : map.keyframes()) map.keyframe(k.id).T_F_C = S.transformPose(k.T_F_C);
+  for (const Landmark& l : map.landmarks()) {
+    if (l.valid) map.landmark(l.id).p_F = S.apply(l.p_F);
+  }
+  MapPlacement placement;
+  placement.fixes = int(cameras.size());
+  placement.attitude_measured = ins.hasAttitude();
+  placement.scale_sigma = fit.sigma_log_scale;
+  placement.rotation_sigma_deg = fit.sigma_rotation_rad / kDegreesToRadians;
+  placement.position_sigma_m = fit.sigma_translation;
+  placement.correction_scale = S.scale();
+  placement.correction_rotation_deg = S.rotation().angularDistance(Eigen::Quaterniond::Identity()) /
+                                      kDegreesToRadians;
+  // How far the correction moved the map's centroid (where the fixes are).
+  placement.correction_translation_m = (S.apply(fit.centroid_source) - fit.centroid_source).norm();
+  return placement;
+}
+
 }  // namespace
 
 // sqrt(correlation time / median fix interval), at least 1 (georef_options.h).
@@ -112,11 +155,12 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
     throw std::runtime_error("cannot geo-reference: the front-end posed " +
                              std::to_string(vision.times.size()) + " frames (need at least 2)");
   }
+  const InsNoise noise = surveyInsNoise(survey, ins, options);
   if (progress) progress("alignment", 0, 1);
   {
     const CameraTrajectory vision_F(vision.times, vision.T_X_C, nullptr, T_B_C,
                                     options.max_vision_gap_s);
-    result.alignment = alignVisionToIns(vision_F, ins, T_B_C, ins_config.sigma_horizontal_m);
+    result.alignment = alignVisionToIns(vision_F, ins, T_B_C, noise);
   }
   const InsAlignment& alignment = *result.alignment;
   for (std::size_t k = 0; k < alignment.paired_fixes.size(); ++k) {
@@ -149,11 +193,14 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   }
   std::vector<SE3d> T_W_K_before;
   for (const Keyframe& k : map.keyframes()) T_W_K_before.push_back(k.T_F_C);
-  const InsNoise noise = surveyInsNoise(survey, ins, options);
   if (progress) progress("bundle adjustment", 0, 1);
   result.bundle = adjustGeoreferencedMap(map, links, ins, T_B_C, noise, survey.config.rgb.camera,
                                          options.bundle);
   for (const RejectedFix& r : result.bundle->rejected) result.rejected_fixes.push_back(r);
+  result.placement = placeMapOnIns(map, links, result.bundle->rejected, ins, T_B_C, noise);
+  if (const std::string warning = scaleWarning(*result.placement); !warning.empty()) {
+    result.warnings.push_back(warning);
+  }
   if (progress) progress("bundle adjustment", 1, 1);
 
   // 3. Every posed frame again, against the adjusted landmarks.

@@ -26,6 +26,16 @@ CameraTrajectory visionInF() {
 // degree roll and 1.5 degree pitch swings and the heading smoothed over
 // 20 s leave the start a few degrees off, which the bundle adjustment's
 // positions then correct (georef_bundle_adjuster_test.cc).
+// The scene's INS noise: 0.1 m horizontal, 2 cm depth, attitude exact (as
+// stated: 0.01 degree).
+InsNoise sceneNoise() {
+  InsNoise noise;
+  noise.sigma_horizontal_m = 0.1;
+  noise.sigma_depth_m = 0.02;
+  noise.sigma_attitude_rad = Eigen::Vector3d::Constant(0.01 * M_PI / 180.0);
+  return noise;
+}
+
 void expectRecovered(const InsAlignment& alignment, bool attitude) {
   const Sim3& S = alignment.S_W_F;
   const Sim3& truth = trueS_W_F();
@@ -40,7 +50,7 @@ TEST(InsAlignment, RecoversTheSimilarityAndLeavesOutAFixThatJumpedMetres) {
   for (bool attitude : {true, false}) {
     SCOPED_TRACE(attitude ? "with INS attitude" : "without INS attitude");
     const InsBodyTrack ins(insFixes(0.1, 0.02, 3, {{12, Eigen::Vector3d(4.0, -3.0, 0.0)}}), attitude);
-    const InsAlignment alignment = alignVisionToIns(visionInF(), ins, mountingT_B_C(), 0.1);
+    const InsAlignment alignment = alignVisionToIns(visionInF(), ins, mountingT_B_C(), sceneNoise());
     ASSERT_EQ(alignment.paired_fixes.size(), 31u);
     EXPECT_EQ(alignment.inlier_count, 30);
     EXPECT_FALSE(alignment.inliers[12]);
@@ -58,7 +68,7 @@ TEST(InsAlignment, NeedsThreeFixesWithinVision) {
                                       {trueCamera(10.2), trueCamera(10.3), trueCamera(10.4), trueCamera(11.3)},
                                       nullptr, mountingT_B_C(), 0.25);
   try {
-    alignVisionToIns(short_vision, ins, mountingT_B_C(), 0.1);
+    alignVisionToIns(short_vision, ins, mountingT_B_C(), sceneNoise());
     FAIL() << "expected std::runtime_error";
   } catch (const std::runtime_error& error) {
     EXPECT_STREQ(error.what(),
