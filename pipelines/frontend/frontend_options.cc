@@ -87,6 +87,8 @@ void FrontendOptions::validate() const {
   atLeast("max_bridged_frames", max_bridged_frames, 0);
   atLeast("min_tracked_points", min_tracked_points, 6);
   atLeast("min_segment_keyframes", min_segment_keyframes, 3);
+  atLeast("join_min_inliers", join_min_inliers, 6);
+  positive("max_ins_scale_sigma", max_ins_scale_sigma);
   atLeast("prefetch_frames", prefetch_frames, 1);
   atLeast("solver_threads", solver_threads, 1);
   atLeast("first_frame", first_frame, 0);

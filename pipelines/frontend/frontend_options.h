@@ -117,6 +117,13 @@ struct FrontendOptions {
   int max_bridged_frames = 3;
   int min_tracked_points = 30;    // fewer tracks: the frame is not posed
   int min_segment_keyframes = 4;  // a segment needs this many keyframes to be fitted to the INS
+  // Segments are joined to earlier ones by vision where their views overlap
+  // (segment_joiner.h); off: every segment goes through the INS.
+  bool join_segments_by_vision = true;
+  int join_min_inliers = 20;      // verified landmark pairs a vision join needs
+  // A segment linked through the INS keeps its own fit's scale only when that
+  // scale's 1-sigma is at most this fraction; otherwise the reference's.
+  double max_ins_scale_sigma = 0.10;
 
   // ---- run ------------------------------------------------------------------
   int prefetch_frames = 8;        // decoded frames queued ahead of tracking (bounded memory)

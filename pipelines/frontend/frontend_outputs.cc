@@ -30,7 +30,8 @@ const std::vector<std::string> kFrameObservationsHeader{"frame", "landmark", "u"
 const std::vector<std::string> kLossesHeader{"first_frame", "last_frame", "reason"};
 const std::vector<std::string> kSegmentsHeader{"segment", "first_frame", "last_frame", "keyframes",
                                                "reference", "linked", "scale", "qw", "qx", "qy", "qz",
-                                               "x", "y", "z", "ins_rms_m", "note"};
+                                               "x", "y", "z", "ins_rms_m", "link", "scale_sigma",
+                                               "joined_to", "note"};
 
 
 // A float pixel in its own shortest round-trip form ("123.45679", not the
@@ -199,7 +200,8 @@ void writeFrontendOutputs(const fs::path& run_folder, const FrontendResult& resu
              << (s.reference ? 1 : 0) << "," << (s.linked ? 1 : 0) << "," << number(s.S_F_S.scale())
              << "," << number(q.w()) << "," << number(q.x()) << "," << number(q.y()) << ","
              << number(q.z()) << "," << number(t.x()) << "," << number(t.y()) << "," << number(t.z())
-             << "," << number(s.ins_rms_m) << "," << cleanText(s.note) << "\n";
+             << "," << number(s.ins_rms_m) << "," << toString(s.link) << "," << number(s.scale_sigma) << ","
+             << s.joined_to << "," << cleanText(s.note) << "\n";
   }
   writeFile(partial / frontend_files::losses, losses.str());
   writeFile(partial / frontend_files::segments, segments.str());
@@ -306,7 +308,15 @@ FrontendResult readFrontendOutputs(const fs::path& run_folder) {
                             segment_table.number(row, 13));
     s.S_F_S = Sim3(segment_table.number(row, 6), q, t);
     s.ins_rms_m = segment_table.number(row, 14);
-    s.note = row.cells[15];
+    try {
+      s.link = parseSegmentLink(std::string(trimBlanks(row.cells[15])));
+    } catch (const std::invalid_argument& error) {
+      bad(segment_table, row, std::string("column 'link': ") + error.what());
+    }
+    s.scale_sigma = segment_table.number(row, 16);
+    s.joined_to = id(segment_table, row, 17);
+    if (s.joined_to < -1) bad(segment_table, row, "column 'joined_to': expected a segment id or -1");
+    s.note = row.cells[18];
     result.segments.push_back(s);
   }
   return result;

@@ -14,7 +14,9 @@
 //                                                                     frame's pose rests on (distorted px)
 //   losses.csv        first_frame,last_frame,reason
 //   segments.csv      segment,first_frame,last_frame,keyframes,reference,linked,
-//                     scale,qw,qx,qy,qz,x,y,z,ins_rms_m,note          S_F_S of each segment
+//                     scale,qw,qx,qy,qz,x,y,z,ins_rms_m,              S_F_S of each segment, and how it
+//                     link,scale_sigma,joined_to,note                 was linked (reference, vision, ins,
+//                                                                     none), scale 1-sigma, segment joined to
 //   frames.tum        t tx ty tz qx qy qz qw                          posed frames only (TUM format)
 //   summary.txt       the run's summary and warnings, for people
 //

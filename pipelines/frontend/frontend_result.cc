@@ -27,6 +27,23 @@ FrameStatus parseFrameStatus(const std::string& name) {
                               "': expected tracking, initialising, lost, no_texture or undecodable");
 }
 
+const char* toString(SegmentLink link) {
+  switch (link) {
+    case SegmentLink::reference: return "reference";
+    case SegmentLink::vision: return "vision";
+    case SegmentLink::ins: return "ins";
+    case SegmentLink::none: return "none";
+  }
+  return "?";
+}
+
+SegmentLink parseSegmentLink(const std::string& name) {
+  for (SegmentLink l : {SegmentLink::reference, SegmentLink::vision, SegmentLink::ins, SegmentLink::none}) {
+    if (name == toString(l)) return l;
+  }
+  throw std::invalid_argument("unknown segment link '" + name + "': expected reference, vision, ins or none");
+}
+
 const char* toString(FrontendStep step) {
   switch (step) {
     case FrontendStep::decode: return "decode";

@@ -79,6 +79,18 @@ struct TrackingLoss {
   std::string reason;   // why the first frame was lost (e.g. "no texture: dark (mean 0.0 DN)")
 };
 
+// How a segment came into F (segments.csv `link`; docs/FRONTEND.md,
+// "Linking segments").
+enum class SegmentLink {
+  reference,  // its frame is F
+  vision,     // joined to an earlier segment by matching their landmarks (segment_joiner.h)
+  ins,        // fitted to the INS (segment_linker.h), no view overlapping an earlier segment's
+  none,       // not linked: its frames are reported lost
+};
+const char* toString(SegmentLink link);
+// Inverse of toString; throws std::invalid_argument for an unknown name.
+SegmentLink parseSegmentLink(const std::string& name);
+
 struct SegmentRecord {
   int id = 0;
   int first_frame = 0;
@@ -88,7 +100,11 @@ struct SegmentRecord {
   bool linked = false;     // expressed in F (the reference is linked by definition)
   Sim3 S_F_S;              // segment frame -> F
   double ins_rms_m = 0.0;  // residual of its INS fit (0 when not fitted)
-  std::string note;        // e.g. "linked through the INS (rms 0.05 m)" or why not
+  SegmentLink link = SegmentLink::none;
+  // 1-sigma of S_F_S.scale() (0 for the reference; see docs/FRONTEND.md).
+  double scale_sigma = 0.0;
+  int joined_to = -1;      // the segment it was joined to by vision (-1: none)
+  std::string note;        // e.g. "joined to segment 0 by vision: ..." or why not linked
 };
 
 struct FrontendResult {

@@ -36,40 +36,15 @@ std::pair<int, int> removeOutlierObservations(VisualMap& map, const std::vector<
   return {removed_observations, removed_landmarks};
 }
 
-LocalBundleAdjustmentReport adjustLocalWindow(VisualMap& map, const std::vector<int>& window,
-                                              const PinholeRadtanCamera& camera,
-                                              const LocalBundleAdjustmentOptions& options) {
-  LocalBundleAdjustmentReport report;
-  if (window.empty()) return report;
-  const std::set<int> free_keyframes(window.begin(), window.end());
+namespace {
 
-  // Landmarks seen by the window, and the older keyframes that also see them
-  // (counted by how many of those landmarks they see).
-  std::set<int> landmark_set;
-  for (int k : window) {
-    for (const auto& o : map.keyframe(k).observations) {
-      if (map.landmark(o.landmark_id).valid) landmark_set.insert(o.landmark_id);
-    }
-  }
-  std::set<int> outside;
-  for (int l : landmark_set) {
-    for (int k : map.landmark(l).keyframe_ids) {
-      if (!free_keyframes.count(k)) outside.insert(k);
-    }
-  }
-  // The newest outside keyframes anchor the window best (they share the most).
-  std::vector<int> fixed(outside.rbegin(), outside.rend());
-  if (int(fixed.size()) > options.max_fixed_keyframes) fixed.resize(std::size_t(options.max_fixed_keyframes));
-  std::set<int> fixed_set(fixed.begin(), fixed.end());
-  std::set<int> free_set = free_keyframes;
-  if (fixed_set.empty()) {
-    // The window reaches the segment's start: hold its first two keyframes.
-    std::vector<int> segment_keyframes(free_set.begin(), free_set.end());
-    for (std::size_t i = 0; i < segment_keyframes.size() && i < 2; ++i) {
-      fixed_set.insert(segment_keyframes[i]);
-      free_set.erase(segment_keyframes[i]);
-    }
-  }
+// The solve of both entry points: free and fixed keyframes, and the landmarks
+// to adjust (those with two observations among the keyframes are kept).
+LocalBundleAdjustmentReport adjustSets(VisualMap& map, const std::set<int>& free_set,
+                                       const std::set<int>& fixed_set, const std::set<int>& landmark_set,
+                                       const PinholeRadtanCamera& camera,
+                                       const LocalBundleAdjustmentOptions& options) {
+  LocalBundleAdjustmentReport report;
   if (free_set.empty()) return report;
 
   FactorGraph graph;
@@ -132,4 +107,60 @@ LocalBundleAdjustmentReport adjustLocalWindow(VisualMap& map, const std::vector<
   return report;
 }
 
+}  // namespace
+
+LocalBundleAdjustmentReport adjustKeyframes(VisualMap& map, const std::vector<int>& free_keyframes,
+                                            const std::vector<int>& fixed_keyframes,
+                                            const PinholeRadtanCamera& camera,
+                                            const LocalBundleAdjustmentOptions& options) {
+  const std::set<int> free_set(free_keyframes.begin(), free_keyframes.end());
+  std::set<int> fixed_set(fixed_keyframes.begin(), fixed_keyframes.end());
+  for (int k : free_set) fixed_set.erase(k);
+  std::set<int> landmark_set;
+  for (int k : free_set) {
+    for (const auto& o : map.keyframe(k).observations) {
+      if (map.landmark(o.landmark_id).valid) landmark_set.insert(o.landmark_id);
+    }
+  }
+  return adjustSets(map, free_set, fixed_set, landmark_set, camera, options);
+}
+
+LocalBundleAdjustmentReport adjustLocalWindow(VisualMap& map, const std::vector<int>& window,
+                                              const PinholeRadtanCamera& camera,
+                                              const LocalBundleAdjustmentOptions& options) {
+  LocalBundleAdjustmentReport report;
+  if (window.empty()) return report;
+  const std::set<int> free_keyframes(window.begin(), window.end());
+
+  // Landmarks seen by the window, and the older keyframes that also see them
+  // (counted by how many of those landmarks they see).
+  std::set<int> landmark_set;
+  for (int k : window) {
+    for (const auto& o : map.keyframe(k).observations) {
+      if (map.landmark(o.landmark_id).valid) landmark_set.insert(o.landmark_id);
+    }
+  }
+  std::set<int> outside;
+  for (int l : landmark_set) {
+    for (int k : map.landmark(l).keyframe_ids) {
+      if (!free_keyframes.count(k)) outside.insert(k);
+    }
+  }
+  // The newest outside keyframes anchor the window best (they share the most).
+  std::vector<int> fixed(outside.rbegin(), outside.rend());
+  if (int(fixed.size()) > options.max_fixed_keyframes) fixed.resize(std::size_t(options.max_fixed_keyframes));
+  std::set<int> fixed_set(fixed.begin(), fixed.end());
+  std::set<int> free_set = free_keyframes;
+  if (fixed_set.empty()) {
+    // The window reaches the segment's start: hold its first two keyframes.
+    std::vector<int> segment_keyframes(free_set.begin(), free_set.end());
+    for (std::size_t i = 0; i < segment_keyframes.size() && i < 2; ++i) {
+      fixed_set.insert(segment_keyframes[i]);
+      free_set.erase(segment_keyframes[i]);
+    }
+  }
+  return adjustSets(map, free_set, fixed_set, landmark_set, camera, options);
+}
+
 }  // namespace hsmap
+

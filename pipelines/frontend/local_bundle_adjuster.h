@@ -50,6 +50,17 @@ LocalBundleAdjustmentReport adjustLocalWindow(VisualMap& map, const std::vector<
                                               const PinholeRadtanCamera& camera,
                                               const LocalBundleAdjustmentOptions& options);
 
+// The same solve on given keyframes: `free_keyframes` adjusted, every
+// landmark they observe with them, `fixed_keyframes` held constant (their
+// observations of those landmarks enter the problem; other keyframes' do
+// not). Used to adjust two segments joined by vision as one
+// (segment_joiner.h): the new segment free, the earlier keyframes that see
+// the merged landmarks fixed.
+LocalBundleAdjustmentReport adjustKeyframes(VisualMap& map, const std::vector<int>& free_keyframes,
+                                            const std::vector<int>& fixed_keyframes,
+                                            const PinholeRadtanCamera& camera,
+                                            const LocalBundleAdjustmentOptions& options);
+
 // Removes observations (and landmarks left with < 2) of `landmark_ids` whose
 // error exceeds outlier_px; returns {observations removed, landmarks removed}.
 std::pair<int, int> removeOutlierObservations(VisualMap& map, const std::vector<int>& landmark_ids,

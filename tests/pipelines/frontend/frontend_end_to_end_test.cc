@@ -175,6 +175,9 @@ TEST(FrontendEndToEnd, BlackFramesAreOneReportedLossAndTheFramesAfterArePosedInT
   ASSERT_EQ(result.segments.size(), 2u);
   EXPECT_TRUE(result.segments[0].reference);
   EXPECT_TRUE(result.segments[1].linked);
+  // 12 black frames (0.5 s): the seabed after them overlaps the one before,
+  // so the segments are joined by vision, not through the INS.
+  EXPECT_EQ(result.segments[1].link, SegmentLink::vision) << result.segments[1].note;
   EXPECT_GT(result.segments[1].first_frame, last_black);
   // The second segment's observations too, mapped into the linked map.
   expectFrameObservationsFitTheirFrames(result, survey, FrontendOptions{});

@@ -1,0 +1,135 @@
+#pragma once
+// Joining map segments by vision.
+//
+// After a tracking loss the front-end starts a new map segment S in a frame of
+// its own (origin, orientation and scale from a new two-view start). When the
+// loss is short the seabed seen just after it is nearly the seabed seen just
+// before (0.3 s at 0.3 m/s moves a 1.4 m footprint by 9 cm), so the new
+// segment can be put into the frame G of an earlier one exactly, by matching
+// their landmarks, instead of through the INS (segment_linker.h), whose fixes
+// are decimetres off and can be metres off.
+//
+// One join attempt is a pair of keyframes: an earlier one E (its landmarks in
+// G) and a new one N (its landmarks in S).
+//   1. Descriptors. ORB (cv::ORB::compute; Rublee et al., ICCV 2011) at the
+//      pixels of each keyframe's landmark observations, on the pre-processed
+//      grey image the tracker saw, so that every descriptor carries a 3-D
+//      landmark of its own segment. Upright (angle 0): across a short gap a
+//      down-looking camera turns by degrees, well within BRIEF's tolerance,
+//      and skipping the orientation keeps the two sides' descriptors of one
+//      corner alike.
+//   2. Matches. Hamming distance, Lowe's ratio test (best < ratio x second
+//      best) and mutual best (N's best in E and E's best in N agree), at most
+//      max_hamming bits apart.
+//   3. PnP RANSAC of N on E's landmarks (estimateFramePose: cv::solvePnPRansac
+//      then the motion-only refinement, the front-end's own pose code): T_G_N.
+//   4. Sim(3) of the matched pairs, S landmark -> G landmark, with RANSAC
+//      (alignUmeyamaRobust, core/geometry/sim3.h), the threshold a fraction of
+//      the altitude (the median depth of E's matched landmarks, in G's units):
+//      S_G_S, and its scale's 1-sigma (below).
+//   5. Verification, each must hold:
+//        - the Sim(3)'s pose of N, S_G_S * T_S_N, agrees with the PnP pose:
+//          rotation within max_rotation_deg, position within
+//          max_position_fraction of the altitude;
+//        - the inliers (pairs inside the Sim(3)'s threshold, PnP inliers, and
+//          reprojecting within max_reprojection_px in both E and N under the
+//          joined map: the pair's landmark at E's position, N at S_G_S T_S_N)
+//          number at least min_inliers, and are at least half of the
+//          Sim(3)'s inliers (a wrong similarity that happens to gather 3-D
+//          agreement does not reproject).
+//
+// The scale's 1-sigma is the least-squares standard error of the Sim(3)'s
+// scale over the inliers (with the rotation held):
+//     sigma_s = sigma / sqrt(sum_i |R (p_S,i - mean p_S)|^2),
+//     sigma^2 = sum_i |p_G,i - S_G_S p_S,i|^2 / (3 n - 7),
+// the per-coordinate residual variance of the fit. It treats the landmarks'
+// errors as independent, which they are not quite (a segment's landmarks
+// share its keyframes' errors), so it is a lower bound; the join's bundle
+// adjustment then sets the scale from the observations themselves.
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/geometry/pinhole_radtan_camera.h"
+#include "core/geometry/se3.h"
+#include "core/geometry/sim3.h"
+#include "pipelines/frontend/frame_pose_estimator.h"
+#include "pipelines/frontend/visual_map.h"
+
+namespace hsmap {
+
+struct SegmentJoinOptions {
+  // Keyframes tried: the earlier segments' keyframes nearest in time to the
+  // new segment's start (those before the gap, and any earlier one) ...
+  int earlier_keyframes = 5;
+  // ... against the new segment's first keyframes.
+  int new_keyframes = 3;
+  // ORB patch (pixels at the survey's image): the descriptor's support.
+  int orb_patch_px = 31;
+  double ratio = 0.8;        // Lowe's ratio test
+  int max_hamming = 64;      // of 256 bits
+  int min_inliers = 20;      // verified pairs a join needs
+  // Sim(3) RANSAC threshold, a fraction of the altitude: the landmarks of a
+  // segment's first keyframes are triangulated from ~2 deg of parallax, a
+  // few percent in depth.
+  double sim3_threshold_fraction = 0.05;
+  double max_rotation_deg = 1.0;         // PnP vs Sim(3) pose of N
+  double max_position_fraction = 0.03;   // PnP vs Sim(3) position of N, of the altitude
+  double max_reprojection_px = 3.0;      // inliers in E and in N under the joined map
+  PoseEstimatorOptions pnp;              // the tracker's, scaled to the image
+};
+
+// One keyframe as a join attempt needs it: its pose and its landmarks in the
+// frame X of its side (G for the earlier keyframe, S for the new one).
+struct JoinKeyframeView {
+  int keyframe_id = -1;
+  int segment = -1;
+  SE3d T_X_C;
+  std::vector<int> landmark_ids;          // map ids, per observation
+  std::vector<Eigen::Vector3d> p_X;       // landmark positions in X
+  std::vector<Eigen::Vector2d> pixels;    // observation pixels (distorted)
+  cv::Mat gray;                           // the pre-processed grey image
+  // Filled by describeJoinView(): descriptors (CV_8U rows) and, per row, the
+  // index into landmark_ids of the observation it describes.
+  cv::Mat descriptors;
+  std::vector<int> described;
+};
+
+// The view of keyframe `keyframe_id` of `map`, its pose and landmarks taken
+// from the map's frame into X by S_X_map (valid landmarks with at least two
+// observations only).
+JoinKeyframeView makeJoinView(const VisualMap& map, int keyframe_id, const Sim3& S_X_map, cv::Mat gray);
+
+// Computes the ORB descriptors of the view (step 1), in place.
+void describeJoinView(JoinKeyframeView& view, const SegmentJoinOptions& options);
+
+struct SegmentJoin {
+  bool ok = false;
+  std::string failure;  // why not (the first check that failed)
+  int earlier_keyframe = -1, new_keyframe = -1;  // map keyframe ids
+  int earlier_segment = -1;
+  int matches = 0;       // mutual, ratio-tested descriptor matches
+  int pnp_inliers = 0;
+  int sim3_inliers = 0;
+  int inliers = 0;       // verified pairs
+  Sim3 S_G_S;            // the new segment's frame -> the earlier keyframe's frame G
+  double scale_sigma = 0.0;          // 1-sigma of S_G_S.scale() (see the header comment)
+  double rotation_gap_deg = 0.0;     // PnP vs Sim(3) pose of N
+  double position_gap_fraction = 0.0;  // of the altitude
+  double reprojection_rms_px = 0.0;  // of the inliers, over both keyframes
+  double altitude = 0.0;             // median depth of E's matched landmarks, G's units
+  // The verified pairs: (earlier landmark id, new landmark id).
+  std::vector<std::pair<int, int>> landmark_pairs;
+  // The runner's: verified keyframe pairs whose landmark pairs were merged.
+  int pairs_from_keyframe_pairs = 1;
+};
+
+// Steps 2-5 on one pair of described views (earlier in G, new in S).
+SegmentJoin joinKeyframePair(const JoinKeyframeView& earlier, const JoinKeyframeView& later,
+                             const PinholeRadtanCamera& camera, const SegmentJoinOptions& options);
+
+}  // namespace hsmap
