@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/util/message_text.h"
+
 namespace hsmap {
 
 std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& found,
@@ -95,13 +97,19 @@ GeorefResult withJointMap(GeorefResult posed, const JointResult& joint) {
   return posed;
 }
 
-RunCalibration jointCalibration(const JointResult& joint, int round) {
+RunCalibration jointCalibration(const JointResult& joint, int round,
+                                const std::optional<MapPlacement>& placement) {
   RunCalibration calibration;
   calibration.variant = "joint";
   calibration.T_C_U.rotation = joint.T_C_U.q;
   calibration.T_C_U.translation_m = joint.T_C_U.t;
   calibration.sigma_rotation_deg = joint.sigma_rotation_deg;
   calibration.sigma_translation_m = joint.sigma_translation_m;
+  if (placement && calibration.sigma_translation_m) {
+    const Eigen::Vector3d scale_part = placement->scale_sigma * joint.T_C_U.t.cwiseAbs();
+    calibration.sigma_translation_m =
+        (calibration.sigma_translation_m->cwiseAbs2() + scale_part.cwiseAbs2()).cwiseSqrt().eval();
+  }
   calibration.time_offset_s = joint.time_offset_s;
   calibration.time_offset_sigma_s = joint.time_offset_sigma_s;
   calibration.warnings.push_back("T_C_U and time_offset_s estimated by the joint problem (round " +
@@ -111,6 +119,12 @@ RunCalibration jointCalibration(const JointResult& joint, int round) {
     calibration.warnings.push_back("observability: " + component +
                                    " is weakly determined by this survey (its 1-sigma is more "
                                    "than half the prior's); it stays close to survey.yaml's guess");
+  }
+  if (placement && calibration.sigma_translation_m) {
+    calibration.warnings.push_back(
+        "T_C_U's translation 1-sigma includes the map's scale uncertainty (" +
+        fixedDecimals(100.0 * placement->scale_sigma, 2) +
+        " %, georef/map_placement.yaml): a lever arm measured in the map is as uncertain as its scale");
   }
   for (const std::string& warning : joint.warnings) calibration.warnings.push_back(warning);
   return calibration;

@@ -4,6 +4,7 @@
 // spline, the map for meshing again, calibration.yaml. Used by the joint
 // stage (pipelines/run/joint_stage.h, docs/JOINT.md).
 
+#include <optional>
 #include <vector>
 
 #include "core/geometry/se3.h"
@@ -11,6 +12,7 @@
 #include "core/survey/run_calibration.h"
 #include "pipelines/calibration/extrinsic_tie_point.h"
 #include "pipelines/georef/georef_result.h"
+#include "pipelines/georef/map_placement.h"
 #include "pipelines/joint/joint_problem.h"
 
 namespace hsmap {
@@ -43,6 +45,14 @@ GeorefResult withJointMap(GeorefResult posed, const JointResult& joint);
 
 // calibration.yaml of a joint solution found in `round`: T_C_U and d with
 // their 1-sigma, the observability warnings and the solve's own.
-RunCalibration jointCalibration(const JointResult& joint, int round);
+//
+// The lever arm is measured in the map's units: a map whose scale is off by
+// a fraction e gives a translation off by e t. The joint problem's own
+// covariance holds the scale the INS factors give the spline, but the tie
+// points tie T_C_U to the map at millimetres, so what the map's scale
+// uncertainty (georef's, map_placement.h) moves the lever arm by is added:
+//     Sigma_t += sigma_scale^2 t t^T,   per axis sigma_i = sqrt(sigma_i^2 + (sigma_scale t_i)^2).
+RunCalibration jointCalibration(const JointResult& joint, int round,
+                                const std::optional<MapPlacement>& placement = std::nullopt);
 
 }  // namespace hsmap

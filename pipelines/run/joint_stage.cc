@@ -193,7 +193,7 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
         << " mm and " << trajectory_change_deg << " deg (RMS over the frames)\n";
 
     posed = posedFromSpline(georef, joint, survey.line_times);
-    calibration = jointCalibration(joint, round);
+    calibration = jointCalibration(joint, round, georef.placement);
     line_poses.clear();
     for (const GeorefLinePose& line : posed.lines) line_poses.push_back({line.line, line.t, line.T_W_U});
     // The surface again from the joint trajectory, so the lines are cast
