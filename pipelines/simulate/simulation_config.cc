@@ -144,6 +144,19 @@ void validateSimulationConfig(const SimulationConfig& config) {
           "an angle in [-360, 360] degrees");
   require(motion.lanes >= 1 && motion.lanes <= 100, "motion.lanes", "an integer in [1, 100]");
   require(motion.lane_spacing_m > 0.0, "motion.lane_spacing_m", "a spacing > 0 m");
+  // Uphill of the start the seabed rises by tan(slope) per metre: it must
+  // stay deep enough under the whole path (lanes, U-turns, the 3 m the scene
+  // extends beyond them) for the vehicle to stay under water, with 1.5 m of
+  // relief to spare.
+  const double path_reach_m =
+      std::hypot(motion.length_m + (motion.lanes > 1 ? motion.lane_spacing_m : 0.0),
+                 (motion.lanes - 1) * motion.lane_spacing_m) + 3.0;
+  const double shallowest_seabed_m = config.scene.seabed_depth_m - 1.5 -
+                                     std::tan(config.scene.slope_deg * M_PI / 180.0) * path_reach_m;
+  require(config.scene.slope_deg == 0.0 || shallowest_seabed_m > motion.altitude_m + 1.0,
+          "scene.slope_deg",
+          "a slope that keeps the seabed under the track deeper than the altitude + 2.5 m "
+          "(lower it, or deepen scene.seabed_depth_m)");
   require(config.rgb.camera.width >= 16 && config.rgb.camera.height >= 16, "rgb.camera",
           "an image of at least 16 x 16 pixels");
   require(config.rgb.camera.fx > 0.0 && config.rgb.camera.fy > 0.0, "rgb.camera.fx/fy", "> 0");

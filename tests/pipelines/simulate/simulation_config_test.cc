@@ -199,6 +199,12 @@ TEST(SimulationPresets, ValidationRejectsOutOfRangeNewSettings) {
   config = *simulationPreset("tiny");
   config.scene.slope_deg = 46.0;
   EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
+  // 45 degrees along 100 m of track would lift the seabed out of the water.
+  config = *simulationPreset("transect-100m");
+  config.scene.slope_deg = 45.0;
+  EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
+  config.scene.seabed_depth_m = 120.0;
+  EXPECT_NO_THROW(validateSimulationConfig(config));
   config = *simulationPreset("tiny");
   config.motion.heading_deg = -361.0;
   EXPECT_THROW(validateSimulationConfig(config), std::invalid_argument);
