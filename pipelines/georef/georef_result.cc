@@ -70,7 +70,10 @@ std::string GeorefResult::summary() const {
     const MapPlacement& p = *placement;
     out << "  map placement (maximum likelihood on " << p.fixes << " INS fixes, "
         << (p.attitude_measured ? "positions and attitude" : "positions, attitude assumed level")
-        << "): scale 1-sigma " << fixedDecimals(100.0 * p.scale_sigma, 2) << " %, rotation 1-sigma "
+        << "): scale 1-sigma " << fixedDecimals(100.0 * p.scale_sigma, 2) << " % ("
+        << fixedDecimals(100.0 * p.scale_sigma_without_attitude, 2) << " % without the attitude, "
+        << fixedDecimals(100.0 * p.scale_sigma_without_depth, 2)
+        << " % without the depths' precision), rotation 1-sigma "
         << fixedDecimals(p.rotation_sigma_deg[0], 3) << "/" << fixedDecimals(p.rotation_sigma_deg[1], 3)
         << "/" << fixedDecimals(p.rotation_sigma_deg[2], 3) << " deg, position 1-sigma "
         << fixedDecimals(p.position_sigma_m[0], 3) << "/" << fixedDecimals(p.position_sigma_m[1], 3)

@@ -5,16 +5,19 @@
 namespace hsmap {
 
 SimilarityFit fitMapToIns(const std::vector<CameraAtFix>& cameras, const InsBodyTrack& ins,
-                          const SE3d& T_B_C, const InsNoise& noise, const Sim3& start) {
+                          const SE3d& T_B_C, const InsNoise& noise, const Sim3& start,
+                          InsParts parts) {
   const SE3d T_C_B = T_B_C.inverse();
-  const Eigen::Vector3d sigma_position(noise.sigma_horizontal_m, noise.sigma_horizontal_m,
-                                       noise.sigma_depth_m);
+  const Eigen::Vector3d sigma_position(
+      noise.sigma_horizontal_m, noise.sigma_horizontal_m,
+      parts == InsParts::without_depth ? noise.sigma_horizontal_m : noise.sigma_depth_m);
+  const bool measured_attitude = ins.hasAttitude() && parts != InsParts::without_attitude;
   // Assumed attitudes count once for the survey, and ten times weaker than
   // the adjustment's prior (see the header).
   const double once = kAssumedAttitudeWeakening *
                       std::sqrt(double(std::max<std::size_t>(cameras.size(), 1)));
   const Eigen::Vector3d sigma_attitude =
-      ins.hasAttitude() ? noise.sigma_attitude_rad
+      measured_attitude ? noise.sigma_attitude_rad
                         : Eigen::Vector3d(noise.assumed_level_sigma_rad * once,
                                           noise.assumed_level_sigma_rad * once,
                                           noise.assumed_heading_sigma_rad * once);

@@ -45,9 +45,16 @@ struct CameraAtFix {
   SE3d T_X_C;    // the map's camera pose at the fix's time, in the map's frame X
 };
 
+// Which parts of the INS the fit listens to: all of them, or (to state what
+// each contributes) without the attitude (its fixes' attitudes then weigh
+// only as the weak regulariser of an INS without attitude) or without the
+// depth (the depths weigh as a horizontal position).
+enum class InsParts { all, without_attitude, without_depth };
+
 // S_W_X and its covariance. Throws std::invalid_argument with fewer than 2
 // cameras (fitSimilarity).
 SimilarityFit fitMapToIns(const std::vector<CameraAtFix>& cameras, const InsBodyTrack& ins,
-                          const SE3d& T_B_C, const InsNoise& noise, const Sim3& start);
+                          const SE3d& T_B_C, const InsNoise& noise, const Sim3& start,
+                          InsParts parts = InsParts::all);
 
 }  // namespace hsmap

@@ -45,6 +45,8 @@ void writeMapPlacement(const std::filesystem::path& file, const MapPlacement& p)
        << "fixes: " << p.fixes << "\n"
        << "attitude: " << (p.attitude_measured ? "measured" : "assumed") << "\n"
        << "scale_sigma: " << formatDouble(p.scale_sigma) << "\n"
+       << "scale_sigma_without_attitude: " << formatDouble(p.scale_sigma_without_attitude) << "\n"
+       << "scale_sigma_without_depth: " << formatDouble(p.scale_sigma_without_depth) << "\n"
        << "rotation_sigma_deg: " << listOf(p.rotation_sigma_deg) << "\n"
        << "position_sigma_m: " << listOf(p.position_sigma_m) << "\n"
        << "correction_scale: " << formatDouble(p.correction_scale) << "\n"
@@ -61,7 +63,8 @@ MapPlacement readMapPlacement(const std::filesystem::path& file) {
     throw InputError(file, "line " + std::to_string(error.mark.line + 1), error.msg);
   }
   const StrictYamlMap map(file, root, "", 1,
-                          {"format", "fixes", "attitude", "scale_sigma", "rotation_sigma_deg",
+                          {"format", "fixes", "attitude", "scale_sigma", "scale_sigma_without_attitude",
+                           "scale_sigma_without_depth", "rotation_sigma_deg",
                            "position_sigma_m", "correction_scale", "correction_rotation_deg",
                            "correction_translation_m"});
   if (map.text("format") != MapPlacement::kFormat) {
@@ -76,6 +79,8 @@ MapPlacement readMapPlacement(const std::filesystem::path& file) {
   }
   p.attitude_measured = attitude == "measured";
   p.scale_sigma = map.numberInRange("scale_sigma", 0.0, 1e6);
+  p.scale_sigma_without_attitude = map.numberInRange("scale_sigma_without_attitude", 0.0, 1e6);
+  p.scale_sigma_without_depth = map.numberInRange("scale_sigma_without_depth", 0.0, 1e6);
   p.rotation_sigma_deg = nonNegativeTriple(map, "rotation_sigma_deg");
   p.position_sigma_m = nonNegativeTriple(map, "position_sigma_m");
   p.correction_scale = map.positiveNumber("correction_scale");

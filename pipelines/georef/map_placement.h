@@ -8,6 +8,10 @@
 //   fixes: 12                        INS fixes the similarity was fitted to
 //   attitude: measured               measured | assumed (level, along-track)
 //   scale_sigma: 0.0041              1-sigma of the map's relative scale
+//   scale_sigma_without_attitude: 0.012   the same if the INS attitude were not used
+//   scale_sigma_without_depth: 0.031      the same if the depths were as noisy as
+//                                         the horizontal positions: what each part
+//                                         of the INS contributes to the scale
 //   rotation_sigma_deg: [r, p, h]    about W's north, east, down axes
 //   position_sigma_m: [n, e, d]      of the map's centroid in W
 //   correction_scale: 1.00012        the similarity applied after the bundle
@@ -31,6 +35,8 @@ struct MapPlacement {
   int fixes = 0;
   bool attitude_measured = true;
   double scale_sigma = 0.0;
+  double scale_sigma_without_attitude = 0.0;
+  double scale_sigma_without_depth = 0.0;
   Eigen::Vector3d rotation_sigma_deg = Eigen::Vector3d::Zero();
   Eigen::Vector3d position_sigma_m = Eigen::Vector3d::Zero();
   double correction_scale = 1.0;

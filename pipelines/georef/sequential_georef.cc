@@ -95,6 +95,15 @@ MapPlacement placeMapOnIns(VisualMap& map, const std::vector<InsFixLink>& links,
     throw std::runtime_error(std::string("cannot place the map on the INS: ") + error.what());
   }
   const Sim3& S = fit.S_target_source;
+  // What each part of the INS contributes: the same fit on the corrected
+  // map without the attitude, and without the depths' precision.
+  for (CameraAtFix& camera : cameras) camera.T_X_C = S.transformPose(camera.T_X_C);
+  const double without_attitude =
+      fitMapToIns(cameras, ins, T_B_C, noise, Sim3::identity(), InsParts::without_attitude)
+          .sigma_log_scale;
+  const double without_depth =
+      fitMapToIns(cameras, ins, T_B_C, noise, Sim3::identity(), InsParts::without_depth)
+          .sigma_log_scale;
   for (const Keyframe& k : map.keyframes()) map.keyframe(k.id).T_F_C = S.transformPose(k.T_F_C);
   for (const Landmark& l : map.landmarks()) {
     if (l.valid) map.landmark(l.id).p_F = S.apply(l.p_F);
@@ -103,6 +112,8 @@ MapPlacement placeMapOnIns(VisualMap& map, const std::vector<InsFixLink>& links,
   placement.fixes = int(cameras.size());
   placement.attitude_measured = ins.hasAttitude();
   placement.scale_sigma = fit.sigma_log_scale;
+  placement.scale_sigma_without_attitude = without_attitude;
+  placement.scale_sigma_without_depth = without_depth;
   placement.rotation_sigma_deg = fit.sigma_rotation_rad / kDegreesToRadians;
   placement.position_sigma_m = fit.sigma_translation;
   placement.correction_scale = S.scale();
