@@ -58,6 +58,9 @@ RunCalibration georefCalibration(const GeorefResult& result, std::vector<std::st
     warnings.push_back("T_C_U and time_offset_s are the survey.yaml guesses: the " + result.variant +
                        " variant does not estimate them");
   }
+  if (result.placement) {
+    if (const std::string scale = scaleWarning(*result.placement); !scale.empty()) warnings.push_back(scale);
+  }
   calibration.warnings = std::move(warnings);
   return calibration;
 }

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/io/atomic_file.h"
@@ -37,6 +38,23 @@ std::string scaleWarning(const MapPlacement& placement) {
           "change of depth"
        << (placement.attitude_measured ? "" : ", or INS attitude,") << " would tighten it";
   return text.str();
+}
+
+void addMapScaleUncertainty(RunCalibration& calibration, const MapPlacement& placement) {
+  if (calibration.sigma_translation_m) {
+    const Eigen::Vector3d scale_part = placement.scale_sigma * calibration.T_C_U.translation_m.cwiseAbs();
+    calibration.sigma_translation_m =
+        (calibration.sigma_translation_m->cwiseAbs2() + scale_part.cwiseAbs2()).cwiseSqrt().eval();
+    calibration.warnings.push_back(
+        "T_C_U's translation 1-sigma includes the map's scale uncertainty (" +
+        fixedDecimals(100.0 * placement.scale_sigma, 2) +
+        " %, georef/map_placement.yaml): a lever arm measured in the map is as uncertain as its scale");
+  }
+  const std::string warning = scaleWarning(placement);
+  if (!warning.empty() && std::find(calibration.warnings.begin(), calibration.warnings.end(), warning) ==
+                              calibration.warnings.end()) {
+    calibration.warnings.push_back(warning);
+  }
 }
 
 void writeMapPlacement(const std::filesystem::path& file, const MapPlacement& p) {

@@ -28,6 +28,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/survey/run_calibration.h"
+
 namespace hsmap {
 
 struct MapPlacement {
@@ -51,6 +53,14 @@ inline constexpr double kScaleSigmaWarning = 0.01;
 // The warning's text for `placement` (empty when the scale is known within
 // kScaleSigmaWarning).
 std::string scaleWarning(const MapPlacement& placement);
+
+// A calibration estimated in a map of this placement: the lever arm T_C_U
+// is measured in the map's units, so a map whose scale is off by a fraction
+// e gives a translation off by e t. Adds that to its 1-sigma (when it has
+// one), Sigma_t += sigma_scale^2 t t^T, per axis
+//     sigma_i = sqrt(sigma_i^2 + (sigma_scale t_i)^2),
+// says so among its warnings, and adds scaleWarning() when there is one.
+void addMapScaleUncertainty(RunCalibration& calibration, const MapPlacement& placement);
 
 void writeMapPlacement(const std::filesystem::path& file, const MapPlacement& placement);
 MapPlacement readMapPlacement(const std::filesystem::path& file);

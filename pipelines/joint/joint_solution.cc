@@ -4,8 +4,6 @@
 #include <cmath>
 #include <string>
 
-#include "core/util/message_text.h"
-
 namespace hsmap {
 
 std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& found,
@@ -105,11 +103,7 @@ RunCalibration jointCalibration(const JointResult& joint, int round,
   calibration.T_C_U.translation_m = joint.T_C_U.t;
   calibration.sigma_rotation_deg = joint.sigma_rotation_deg;
   calibration.sigma_translation_m = joint.sigma_translation_m;
-  if (placement && calibration.sigma_translation_m) {
-    const Eigen::Vector3d scale_part = placement->scale_sigma * joint.T_C_U.t.cwiseAbs();
-    calibration.sigma_translation_m =
-        (calibration.sigma_translation_m->cwiseAbs2() + scale_part.cwiseAbs2()).cwiseSqrt().eval();
-  }
+
   calibration.time_offset_s = joint.time_offset_s;
   calibration.time_offset_sigma_s = joint.time_offset_sigma_s;
   calibration.warnings.push_back("T_C_U and time_offset_s estimated by the joint problem (round " +
@@ -120,12 +114,7 @@ RunCalibration jointCalibration(const JointResult& joint, int round,
                                    " is weakly determined by this survey (its 1-sigma is more "
                                    "than half the prior's); it stays close to survey.yaml's guess");
   }
-  if (placement && calibration.sigma_translation_m) {
-    calibration.warnings.push_back(
-        "T_C_U's translation 1-sigma includes the map's scale uncertainty (" +
-        fixedDecimals(100.0 * placement->scale_sigma, 2) +
-        " %, georef/map_placement.yaml): a lever arm measured in the map is as uncertain as its scale");
-  }
+  if (placement) addMapScaleUncertainty(calibration, *placement);
   for (const std::string& warning : joint.warnings) calibration.warnings.push_back(warning);
   return calibration;
 }

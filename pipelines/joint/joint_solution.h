@@ -46,12 +46,10 @@ GeorefResult withJointMap(GeorefResult posed, const JointResult& joint);
 // calibration.yaml of a joint solution found in `round`: T_C_U and d with
 // their 1-sigma, the observability warnings and the solve's own.
 //
-// The lever arm is measured in the map's units: a map whose scale is off by
-// a fraction e gives a translation off by e t. The joint problem's own
-// covariance holds the scale the INS factors give the spline, but the tie
-// points tie T_C_U to the map at millimetres, so what the map's scale
-// uncertainty (georef's, map_placement.h) moves the lever arm by is added:
-//     Sigma_t += sigma_scale^2 t t^T,   per axis sigma_i = sqrt(sigma_i^2 + (sigma_scale t_i)^2).
+// With `placement` (georef's), the lever arm's 1-sigma carries the map's
+// scale uncertainty (addMapScaleUncertainty, map_placement.h): the joint
+// problem's own covariance holds the tie points' millimetres, which tie
+// T_C_U to the map, not to the truth.
 RunCalibration jointCalibration(const JointResult& joint, int round,
                                 const std::optional<MapPlacement>& placement = std::nullopt);
 

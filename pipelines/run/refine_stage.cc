@@ -79,6 +79,10 @@ void runRefineStage(const StageContext& context, const RefineStageOptions& optio
     }
     fs::remove_all(cast);
   }
+  // The lever arm was measured in georef's map: as uncertain as its scale.
+  if (fs::exists(georef / georef_files::map_placement)) {
+    addMapScaleUncertainty(calibration, readMapPlacement(georef / georef_files::map_placement));
+  }
   std::vector<TimedPose> lines_timed;
   lines_timed.reserve(line_poses.size());
   for (const LinePose& line : line_poses) lines_timed.push_back({line.t, line.T});
