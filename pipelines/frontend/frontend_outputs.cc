@@ -32,6 +32,12 @@ const std::vector<std::string> kSegmentsHeader{"segment", "first_frame", "last_f
                                                "reference", "linked", "scale", "qw", "qx", "qy", "qz",
                                                "x", "y", "z", "ins_rms_m", "link", "scale_sigma",
                                                "joined_to", "note"};
+// segments.csv as front-ends before the vision join wrote it: every link was
+// through the INS, so run folders written then still read (link reference,
+// ins or none; no scale sigma, joined to no segment).
+const std::vector<std::string> kSegmentsHeaderBeforeVisionJoin{
+    "segment", "first_frame", "last_frame", "keyframes", "reference", "linked", "scale", "qw",
+    "qx",      "qy",          "qz",         "x",         "y",         "z",      "ins_rms_m", "note"};
 
 
 // A float pixel in its own shortest round-trip form ("123.45679", not the
@@ -293,7 +299,9 @@ FrontendResult readFrontendOutputs(const fs::path& run_folder) {
       .forEach([&](const CsvTable& table, const CsvTable::Row& row) {
         result.losses.push_back({id(table, row, 0), id(table, row, 1), row.cells[2]});
       });
-  const CsvTable segment_table = readCsvTable(folder / frontend_files::segments, {kSegmentsHeader});
+  const CsvTable segment_table = readCsvTable(folder / frontend_files::segments,
+                                             {kSegmentsHeader, kSegmentsHeaderBeforeVisionJoin});
+  const bool before_vision_join = segment_table.columns == kSegmentsHeaderBeforeVisionJoin;
   for (const auto& row : segment_table.rows) {
     SegmentRecord s;
     s.id = id(segment_table, row, 0);
@@ -308,6 +316,12 @@ FrontendResult readFrontendOutputs(const fs::path& run_folder) {
                             segment_table.number(row, 13));
     s.S_F_S = Sim3(segment_table.number(row, 6), q, t);
     s.ins_rms_m = segment_table.number(row, 14);
+    if (before_vision_join) {
+      s.link = s.reference ? SegmentLink::reference : s.linked ? SegmentLink::ins : SegmentLink::none;
+      s.note = row.cells[15];
+      result.segments.push_back(s);
+      continue;
+    }
     try {
       s.link = parseSegmentLink(std::string(trimBlanks(row.cells[15])));
     } catch (const std::invalid_argument& error) {

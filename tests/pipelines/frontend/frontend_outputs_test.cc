@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "core/util/input_error.h"
 #include "tests/support/temp_folder.h"
 
@@ -300,6 +305,37 @@ TEST(FrontendOutputs, FrameObservationsFileFollowsTheCsvRules) {
 TEST(FrontendOutputs, FrameObservationPixelMustBeAFloatNumber) {
   expectFrameObservationError("7.5,8.5", "7.5,abc", "line 7", "column 'v': expected a number, got 'abc'");
   expectFrameObservationError("7.5,8.5", "1e39,8.5", "line 7", "column 'u': expected a pixel coordinate, got '1e39'");
+}
+
+// A run folder written before segments were joined by vision (no link,
+// scale_sigma, joined_to columns) still reads: every link then was the INS's.
+TEST(FrontendOutputs, SegmentsWrittenBeforeTheVisionJoinStillRead) {
+  testing::TempFolder run;
+  writeFrontendOutputs(run.path(), sampleResult());
+  const auto file = run / "frontend" / "segments.csv";
+  std::ifstream in(file);
+  std::string header, text, line;
+  std::getline(in, header);
+  text = "segment,first_frame,last_frame,keyframes,reference,linked,scale,qw,qx,qy,qz,x,y,z,ins_rms_m,note\n";
+  while (std::getline(in, line)) {
+    // Drop the three new cells before the note: link, scale_sigma, joined_to.
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 19u) << line;
+    cells.erase(cells.begin() + 15, cells.begin() + 18);
+    for (std::size_t i = 0; i < cells.size(); ++i) text += (i ? "," : "") + cells[i];
+    text += "\n";
+  }
+  in.close();
+  testing::writeText(file, text);
+  const FrontendResult read = readFrontendOutputs(run.path());
+  ASSERT_EQ(read.segments.size(), 2u);
+  EXPECT_EQ(read.segments[0].link, SegmentLink::reference);
+  EXPECT_EQ(read.segments[1].link, SegmentLink::ins);
+  EXPECT_EQ(read.segments[1].joined_to, -1);
+  EXPECT_EQ(read.segments[1].S_F_S.scale(), 0.75);
+  EXPECT_EQ(read.segments[1].note, "linked into F through the INS; scale 0.75");
 }
 
 }  // namespace
