@@ -14,6 +14,7 @@ namespace hsmap {
 namespace {
 
 struct TruthAtFix {
+  SE3d T_W_C;  // true camera pose at the fix time
   SE3d T_W_B;  // true body pose at the fix time
   const InsFixInWorld* fix = nullptr;
 };
@@ -64,7 +65,8 @@ InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
     if (fix.q_W_B.has_value() != with_attitude) {
       throw std::invalid_argument("computeInsFloor: attitude on some fixes only");
     }
-    pairs.push_back({trajectory.at(fix.t) * T_C_B, &fix});
+    const SE3d T_W_C = trajectory.at(fix.t);
+    pairs.push_back({T_W_C, T_W_C * T_C_B, &fix});
   }
   const std::size_t needed = with_attitude ? 2 : 3;
   if (pairs.size() < needed) {
@@ -82,7 +84,9 @@ InsFloor computeInsFloor(const std::vector<TimedPose>& frames_true,
   std::vector<SimilarityFitPosition> positions;
   std::vector<SimilarityFitAttitude> attitudes;
   for (const TruthAtFix& pair : pairs) {
-    positions.push_back({pair.T_W_B.t, Eigen::Vector3d::Zero(), pair.fix->p_W_B, sigma_p});
+    // The similarity moves the camera trajectory (the map); the lever arm
+    // to the body is metres, turned with the map but not scaled.
+    positions.push_back({pair.T_W_C.t, pair.T_W_C.q * T_C_B.t, pair.fix->p_W_B, sigma_p});
     if (with_attitude) attitudes.push_back({pair.T_W_B.q, *pair.fix->q_W_B, sigma_a});
   }
   Sim3 S;

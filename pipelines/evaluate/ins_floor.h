@@ -7,19 +7,23 @@
 // says how much of them no method could have avoided. Take the TRUE camera
 // trajectory, perfect in shape, and geo-reference it as well as the INS
 // allows: the similarity S_ins_true (scale s, rotation R, translation t) that
-// best maps the true body positions onto the INS fixes,
+// best maps the true camera trajectory onto the INS fixes, the lever arm to
+// the body in metres (turned with the map, not scaled: the INS measures the
+// body, the map holds the camera, and the mounting is measured in metres),
 //
-//   min over (s, R, t) of  sum_k |W_p (p_ins(k) - (s R p_W_B(t_k) + t))|^2
-//                        + sum_k |W_a log(R_ins(k)^-1 R R_W_B(t_k))|^2   (when ins.csv has attitude)
+//   min over (s, R, t) of  sum_k |W_p (p_ins(k) - (s R p_W_C(t_k) + t + R R_W_C(t_k) t_C_B))|^2
+//                        + sum_k |W_a log(R_ins(k)^-1 R R_W_C(t_k) R_C_B)|^2   (when ins.csv has attitude)
 //
-// with p_W_B(t_k) = position of T_W_C(t_k) * T_C_B, T_W_C interpolated in SE(3) from
-// truth/rgb_poses.csv at the fix time t_k (pose_interpolation.h; fixes outside the
-// frames' time span are skipped: the truth says nothing there), T_C_B = T_B_C^-1 from
-// survey.yaml's ins.camera_in_body (exact in synthetic surveys), p_ins the fix converted to W
-// (LocalNedFrame at the survey origin) and R_ins its roll/pitch/heading. The weights are the
-// survey's stated 1-sigma: W_p = diag(1/sigma_horizontal, 1/sigma_horizontal, 1/sigma_depth)
-// (north, east, down), W_a = diag(1/sigma_roll, 1/sigma_pitch, 1/sigma_heading) on the body
-// axes x, y, z of the attitude error (exact for a level vehicle, where heading turns about z).
+// with T_W_C(t_k) interpolated in SE(3) from truth/rgb_poses.csv at the fix time t_k
+// (pose_interpolation.h; fixes outside the frames' time span are skipped: the truth says
+// nothing there), T_C_B = T_B_C^-1 from survey.yaml's ins.camera_in_body (exact in
+// synthetic surveys), p_ins the fix converted to W (LocalNedFrame at the survey origin) and
+// R_ins its roll/pitch/heading. The weights are the survey's stated 1-sigma:
+// W_p = diag(1/sigma_horizontal, 1/sigma_horizontal, 1/sigma_depth) (north, east, down),
+// W_a = diag(1/sigma_roll, 1/sigma_pitch, 1/sigma_heading) on the body axes x, y, z of the
+// attitude error (exact for a level vehicle, where heading turns about z). This is the
+// fit georef places the map with (pipelines/georef/ins_similarity.h): a run whose shape
+// is exact is at the floor.
 // Then
 //   ins_floor_rgb_ate_m   = sqrt(mean_i |S p_W_C_true(i) - p_W_C_true(i)|^2) over every frame,
 //   ins_floor_scale_error = |s - 1|,

@@ -174,7 +174,8 @@ class EvaluationFixture {
   }
 
   // nav/ins.csv: the true body at every 5th frame time and just outside the
-  // frames' span, positions multiplied by `scale` about W's origin (1: exact).
+  // frames' span; with `scale`, the body of the camera trajectory multiplied
+  // by `scale` about W's origin, the lever arm in metres (1: exact).
   void writeIns(double scale) const {
     const LocalNedFrame ned(*config_.origin);
     std::vector<double> times = {frames_true_.front().t - 0.2};
@@ -184,7 +185,8 @@ class EvaluationFixture {
     table.has_attitude = true;
     for (double t : times) {
       const SE3d T_W_B = trueBodyPose(t);
-      const GeodeticPoint point = ned.toGeodetic(scale * T_W_B.t);
+      const SE3d T_W_C = T_W_B * SE3d(config_.ins.T_B_C.rotation, config_.ins.T_B_C.translation_m);
+      const GeodeticPoint point = ned.toGeodetic(scale * T_W_C.t + (T_W_B.t - T_W_C.t));
       const Eigen::Vector3d rph = rollPitchHeadingDegFromQuaternion(T_W_B.q);
       InsFix fix;
       fix.t = t;

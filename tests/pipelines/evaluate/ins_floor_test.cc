@@ -29,7 +29,8 @@ class InsFloorTest : public ::testing::Test {
     for (int i = 0; i <= 100; ++i) frames_.push_back({i * 0.04, bodyPose(i * 0.04) * T_B_C_});
   }
 
-  // Fixes on the true body at every 4th frame time, plus two outside the span.
+  // Fixes on the true body at every 4th frame time, plus two outside the
+  // span; with `scale`, of the camera trajectory scaled about `about`.
   std::vector<InsFixInWorld> fixes(double scale, const Eigen::Vector3d& about, bool attitude) const {
     std::vector<InsFixInWorld> result;
     std::vector<double> times = {-0.5};
@@ -39,7 +40,11 @@ class InsFloorTest : public ::testing::Test {
       const SE3d T_W_B = bodyPose(t);
       InsFixInWorld fix;
       fix.t = t;
-      fix.p_W_B = about + scale * (T_W_B.t - about);
+      // The map (the camera trajectory) scaled about `about`, the body the
+      // metric lever arm away from its camera: what an INS sees of a map
+      // whose scale is off.
+      const SE3d T_W_C = T_W_B * T_B_C_;
+      fix.p_W_B = about + scale * (T_W_C.t - about) + (T_W_B.t - T_W_C.t);
       if (attitude) fix.q_W_B = T_W_B.q;
       result.push_back(fix);
     }
