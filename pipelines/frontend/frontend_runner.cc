@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <stdexcept>
 
 #include "core/util/stage_timer.h"
@@ -107,19 +108,28 @@ SegmentGroups joinSegmentsByVision(const Survey& survey, const FrameTracker& tra
   join_options.pnp.min_inliers = options.join_min_inliers;
   join_options.pnp.solver_threads = options.solver_threads;
   KeyframeImages images(survey, options, camera, lamp_light_field);
-  std::map<std::pair<int, int>, JoinKeyframeView> views;  // (keyframe, segment it is seen from) -> view
-  auto view = [&](int keyframe_id) -> const JoinKeyframeView& {
+  // (keyframe, segment it is seen from, descriptor) -> view
+  std::map<std::tuple<int, int, std::string>, JoinKeyframeView> views;
+  auto view = [&](int keyframe_id, const SegmentJoinOptions& o) -> const JoinKeyframeView& {
     const int segment = map.keyframe(keyframe_id).segment;
-    const auto key = std::make_pair(keyframe_id, groups.group[std::size_t(segment)]);
+    const auto key = std::make_tuple(keyframe_id, groups.group[std::size_t(segment)], o.descriptor);
     auto it = views.find(key);
     if (it == views.end()) {
       JoinKeyframeView v = makeJoinView(map, keyframe_id, groups.S_G_S[std::size_t(segment)],
                                         images.gray(map.keyframe(keyframe_id).frame_index));
-      describeJoinView(v, join_options);
+      describeJoinView(v, o);
       it = views.emplace(key, std::move(v)).first;
     }
     return it->second;
   };
+  // Each keyframe pair is tried with SIFT and with ORB (segment_joiner.h):
+  // SIFT matches more across a wide baseline over relief, but on a new
+  // segment whose own geometry is weak the two descriptors' matched sets
+  // give different Sim(3)s, and either may be the one that verifies. Every
+  // attempt passes the same verification.
+  std::vector<SegmentJoinOptions> descriptor_options(2, join_options);
+  descriptor_options[0].descriptor = "sift";
+  descriptor_options[1].descriptor = "orb";
 
   for (std::size_t s = 1; s < n; ++s) {
     if (spans[s].keyframe_ids.empty()) continue;
@@ -136,16 +146,18 @@ SegmentGroups joinSegmentsByVision(const Survey& survey, const FrameTracker& tra
     const std::size_t new_count = std::min(spans[s].keyframe_ids.size(), std::size_t(join_options.new_keyframes));
     SegmentJoin best, best_refused;
     std::vector<SegmentJoin> verified;
-    for (int e : earlier) {
-      for (std::size_t j = 0; j < new_count; ++j) {
-        SegmentJoin join = joinKeyframePair(view(e), view(spans[s].keyframe_ids[j]), camera, join_options);
-        groups.tried[s] = true;
-        if (join.ok) {
-          verified.push_back(join);
-          if (!best.ok || join.inliers > best.inliers) best = join;
-        } else if (best_refused.earlier_keyframe < 0 || join.inliers > best_refused.inliers ||
-                   (join.inliers == best_refused.inliers && join.matches > best_refused.matches)) {
-          best_refused = std::move(join);
+    for (const SegmentJoinOptions& o : descriptor_options) {
+      for (int e : earlier) {
+        for (std::size_t j = 0; j < new_count; ++j) {
+          SegmentJoin join = joinKeyframePair(view(e, o), view(spans[s].keyframe_ids[j], o), camera, o);
+          groups.tried[s] = true;
+          if (join.ok) {
+            verified.push_back(join);
+            if (!best.ok || join.inliers > best.inliers) best = join;
+          } else if (best_refused.earlier_keyframe < 0 || join.inliers > best_refused.inliers ||
+                     (join.inliers == best_refused.inliers && join.matches > best_refused.matches)) {
+            best_refused = std::move(join);
+          }
         }
       }
     }
@@ -196,7 +208,8 @@ SegmentGroups joinSegmentsByVision(const Survey& survey, const FrameTracker& tra
 std::string joinText(const VisualMap& map, const SegmentJoin& join) {
   std::ostringstream text;
   text << "keyframes at frames " << map.keyframe(join.earlier_keyframe).frame_index << "<->"
-       << map.keyframe(join.new_keyframe).frame_index << ", " << join.matches << " matches, " << join.inliers
+       << map.keyframe(join.new_keyframe).frame_index << ", " << join.matches << " " << join.descriptor
+       << " matches, " << join.inliers
        << " inliers";
   if (join.ok && join.pairs_from_keyframe_pairs > 1) {
     text << " (" << join.landmark_pairs.size() << " landmarks merged from " << join.pairs_from_keyframe_pairs

@@ -42,21 +42,33 @@ JoinKeyframeView makeJoinView(const VisualMap& map, int keyframe_id, const Sim3&
 }
 
 void describeJoinView(JoinKeyframeView& view, const SegmentJoinOptions& options) {
+  const bool sift = options.descriptor == "sift";
+  if (!sift && options.descriptor != "orb") {
+    throw std::invalid_argument("segment join descriptor must be \"sift\" or \"orb\", not \"" + options.descriptor +
+                                "\"");
+  }
   std::vector<cv::KeyPoint> keypoints;
   keypoints.reserve(view.pixels.size());
+  const float size = sift ? float(options.sift_size_px) : float(options.orb_patch_px);
   for (std::size_t i = 0; i < view.pixels.size(); ++i) {
     // Upright (angle 0), at the full image (octave 0); class_id keeps the
     // observation, as compute() drops keypoints too close to the border.
-    keypoints.emplace_back(cv::Point2f(float(view.pixels[i].x()), float(view.pixels[i].y())),
-                           float(options.orb_patch_px), 0.0f, 0.0f, 0, int(i));
+    keypoints.emplace_back(cv::Point2f(float(view.pixels[i].x()), float(view.pixels[i].y())), size, 0.0f, 0.0f, 0,
+                           int(i));
+  }
+  view.descriptors.release();
+  view.described.clear();
+  if (keypoints.empty() || view.gray.empty()) return;
+  if (sift) {
+    // Float descriptors (CV_32F rows) at the given size and angle.
+    cv::SIFT::create()->compute(view.gray, keypoints, view.descriptors);
+    for (const auto& k : keypoints) view.described.push_back(k.class_id);
+    return;
   }
   // One pyramid level; the edge threshold just covers the upright patch.
   const int patch = options.orb_patch_px;
   cv::Ptr<cv::ORB> orb = cv::ORB::create(int(keypoints.size()) + 1, 1.2f, 1, patch / 2 + 1, 0, 2,
                                          cv::ORB::HARRIS_SCORE, patch);
-  view.descriptors.release();
-  view.described.clear();
-  if (keypoints.empty() || view.gray.empty()) return;
   orb->compute(view.gray, keypoints, view.descriptors);
   for (const auto& k : keypoints) view.described.push_back(k.class_id);
 }
@@ -67,20 +79,22 @@ SegmentJoin joinKeyframePair(const JoinKeyframeView& earlier, const JoinKeyframe
   join.earlier_keyframe = earlier.keyframe_id;
   join.new_keyframe = later.keyframe_id;
   join.earlier_segment = earlier.segment;
+  join.descriptor = options.descriptor;
   if (earlier.descriptors.rows < 2 || later.descriptors.rows < 2) {
     join.failure = "too few landmarks to describe";
     return join;
   }
 
   // 2. Mutual best matches that pass the ratio test.
-  cv::BFMatcher matcher(cv::NORM_HAMMING);
+  const bool binary = earlier.descriptors.type() == CV_8U;
+  cv::BFMatcher matcher(binary ? cv::NORM_HAMMING : cv::NORM_L2);
   std::vector<std::vector<cv::DMatch>> forward, backward;
   matcher.knnMatch(later.descriptors, earlier.descriptors, forward, 2);
   matcher.knnMatch(earlier.descriptors, later.descriptors, backward, 2);
   std::vector<std::pair<int, int>> matched;  // (earlier observation, later observation)
   for (const auto& m : forward) {
     if (m.size() < 2) continue;
-    if (m[0].distance > options.max_hamming || m[0].distance >= options.ratio * m[1].distance) continue;
+    if ((binary && m[0].distance > options.max_hamming) || m[0].distance >= options.ratio * m[1].distance) continue;
     const auto& back = backward[std::size_t(m[0].trainIdx)];
     if (back.empty() || back[0].trainIdx != m[0].queryIdx) continue;
     matched.emplace_back(earlier.described[std::size_t(m[0].trainIdx)],

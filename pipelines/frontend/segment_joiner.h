@@ -11,16 +11,23 @@
 //
 // One join attempt is a pair of keyframes: an earlier one E (its landmarks in
 // G) and a new one N (its landmarks in S).
-//   1. Descriptors. ORB (cv::ORB::compute; Rublee et al., ICCV 2011) at the
-//      pixels of each keyframe's landmark observations, on the pre-processed
-//      grey image the tracker saw, so that every descriptor carries a 3-D
-//      landmark of its own segment. Upright (angle 0): across a short gap a
-//      down-looking camera turns by degrees, well within BRIEF's tolerance,
-//      and skipping the orientation keeps the two sides' descriptors of one
-//      corner alike.
-//   2. Matches. Hamming distance, Lowe's ratio test (best < ratio x second
-//      best) and mutual best (N's best in E and E's best in N agree), at most
-//      max_hamming bits apart.
+//   1. Descriptors at the pixels of each keyframe's landmark observations,
+//      on the pre-processed grey image the tracker saw, so that every
+//      descriptor carries a 3-D landmark of its own segment: SIFT
+//      (cv::SIFT::compute; Lowe, IJCV 2004), keypoint size 6 px, or ORB
+//      (cv::ORB::compute; Rublee et al., ICCV 2011), 31 px patch. Upright
+//      (angle 0): across a gap a down-looking camera turns by degrees, and
+//      skipping the orientation keeps the two sides' descriptors of one
+//      corner alike. SIFT's gradient histograms bear the change of shape
+//      of a patch over relief seen from two directions ~25 deg apart (a 2 s
+//      gap on a rugged seabed) where ORB's binary tests do not: 48 SIFT
+//      matches / 44 verified against 28 ORB / none. The runner tries both
+//      (frontend_runner.cc, docs/FRONTEND.md): on a new segment of few
+//      keyframes the Sim(3)'s rotation is weak and which matched set
+//      verifies is chance.
+//   2. Matches. L2 (SIFT) or Hamming (ORB, at most max_hamming bits),
+//      Lowe's ratio test (best < ratio x second best) and mutual best (N's
+//      best in E and E's best in N agree).
 //   3. PnP RANSAC of N on E's landmarks (estimateFramePose: cv::solvePnPRansac
 //      then the motion-only refinement, the front-end's own pose code): T_G_N.
 //   4. Sim(3) of the matched pairs, S landmark -> G landmark, with RANSAC
@@ -65,13 +72,24 @@ namespace hsmap {
 struct SegmentJoinOptions {
   // Keyframes tried: the earlier segments' keyframes nearest in time to the
   // new segment's start (those before the gap, and any earlier one) ...
-  int earlier_keyframes = 5;
+  // (10 keyframes before the gap reach ~1 m back at the usual spacing: the
+  // pairs that overlap after a gap of up to ~2 s at 0.4 m/s)
+  int earlier_keyframes = 10;
   // ... against the new segment's first keyframes.
-  int new_keyframes = 3;
+  int new_keyframes = 6;
+  // The descriptor: "sift" (default) or "orb" (the one before; fewer
+  // matches across a wide baseline over relief, see the header comment).
+  std::string descriptor = "sift";
+  // SIFT keypoint size (pixels at the survey's image): the descriptor's
+  // 4x4 cells are 3 x size/2 pixels wide, so 6 px covers ~36 px, about ORB's
+  // patch. Larger supports lose matches over relief (each side sees it from
+  // a different direction): on rugged after a 2 s gap, 6 px gave 4 verified
+  // keyframe pairs, 8 px 3, 12 px 1, 20 px 1.
+  double sift_size_px = 6.0;
   // ORB patch (pixels at the survey's image): the descriptor's support.
   int orb_patch_px = 31;
   double ratio = 0.8;        // Lowe's ratio test
-  int max_hamming = 64;      // of 256 bits
+  int max_hamming = 64;      // of 256 bits (ORB only)
   int min_inliers = 20;      // verified pairs a join needs
   // Sim(3) RANSAC threshold, a fraction of the altitude: the landmarks of a
   // segment's first keyframes are triangulated from ~2 deg of parallax, a
@@ -104,7 +122,7 @@ struct JoinKeyframeView {
 // observations only).
 JoinKeyframeView makeJoinView(const VisualMap& map, int keyframe_id, const Sim3& S_X_map, cv::Mat gray);
 
-// Computes the ORB descriptors of the view (step 1), in place.
+// Computes the descriptors of the view (step 1), in place.
 void describeJoinView(JoinKeyframeView& view, const SegmentJoinOptions& options);
 
 struct SegmentJoin {
@@ -112,6 +130,7 @@ struct SegmentJoin {
   std::string failure;  // why not (the first check that failed)
   int earlier_keyframe = -1, new_keyframe = -1;  // map keyframe ids
   int earlier_segment = -1;
+  std::string descriptor;  // the options' descriptor the matches are of
   int matches = 0;       // mutual, ratio-tested descriptor matches
   int pnp_inliers = 0;
   int sim3_inliers = 0;

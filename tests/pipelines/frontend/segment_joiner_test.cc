@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "tests/pipelines/frontend/synthetic_scene.h"
 
@@ -68,14 +70,19 @@ JoinKeyframeView keyframeView(int id, double dx, const Sim3& S_X_G, cv::Mat gray
   return view;
 }
 
-SegmentJoinOptions options() {
+SegmentJoinOptions options(const std::string& descriptor = "sift") {
   SegmentJoinOptions o;
+  o.descriptor = descriptor;
   o.pnp.min_inliers = o.min_inliers;
   o.pnp.ransac_iterations = 500;
   return o;
 }
 
-TEST(SegmentJoiner, TwoKeyframesOfTheSameSeabedGiveTheSimilarityBetweenTheirSegments) {
+// Both descriptors (SIFT, the default, and ORB) join the same seabed and
+// refuse an unrelated one.
+class SegmentJoinerWith : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SegmentJoinerWith, TwoKeyframesOfTheSameSeabedGiveTheSimilarityBetweenTheirSegments) {
   const PinholeRadtanCamera camera = flatCamera();
   const cv::Mat texture = seabedTexture(1);
   const double dx = 0.06;  // the camera moved 6 cm across the gap: 24 px
@@ -87,9 +94,10 @@ TEST(SegmentJoiner, TwoKeyframesOfTheSameSeabedGiveTheSimilarityBetweenTheirSegm
   for (std::size_t i = 0; i < later.pixels.size(); ++i) later.pixels[i].x() -= kFocal * dx;
   // The same landmarks, seen from the new pose: positions in S are S_S_G of G's.
   for (std::size_t i = 0; i < later.p_X.size(); ++i) later.p_X[i] = S_S_G.apply(earlier.p_X[i]);
-  describeJoinView(earlier, options());
-  describeJoinView(later, options());
-  const SegmentJoin join = joinKeyframePair(earlier, later, camera, options());
+  describeJoinView(earlier, options(GetParam()));
+  describeJoinView(later, options(GetParam()));
+  EXPECT_EQ(earlier.descriptors.type(), GetParam() == "sift" ? CV_32F : CV_8U);
+  const SegmentJoin join = joinKeyframePair(earlier, later, camera, options(GetParam()));
   ASSERT_TRUE(join.ok) << join.failure;
   EXPECT_GE(join.inliers, 100);
   EXPECT_NEAR(join.S_G_S.scale(), 1.0 / 2.5, 1e-3);
@@ -98,17 +106,26 @@ TEST(SegmentJoiner, TwoKeyframesOfTheSameSeabedGiveTheSimilarityBetweenTheirSegm
   for (const auto& [e, n] : join.landmark_pairs) EXPECT_EQ(e % 1000, n % 1000);  // the same landmark
 }
 
-TEST(SegmentJoiner, TwoKeyframesOfUnrelatedSeabedGiveNoJoin) {
+TEST_P(SegmentJoinerWith, TwoKeyframesOfUnrelatedSeabedGiveNoJoin) {
   const PinholeRadtanCamera camera = flatCamera();
   JoinKeyframeView earlier = keyframeView(0, 0.0, Sim3(), viewOf(seabedTexture(1), 0.0, camera), camera, 7);
   // Another seabed, and landmarks elsewhere: nothing in common but chance.
   JoinKeyframeView later = keyframeView(1, 0.06, Sim3(), viewOf(seabedTexture(2), 0.06, camera), camera, 8);
-  describeJoinView(earlier, options());
-  describeJoinView(later, options());
-  const SegmentJoin join = joinKeyframePair(earlier, later, camera, options());
+  describeJoinView(earlier, options(GetParam()));
+  describeJoinView(later, options(GetParam()));
+  const SegmentJoin join = joinKeyframePair(earlier, later, camera, options(GetParam()));
   EXPECT_FALSE(join.ok) << join.matches << " matches, " << join.inliers << " inliers";
   EXPECT_FALSE(join.failure.empty());
   std::cout << "refused: " << join.failure << "\n";
+}
+
+INSTANTIATE_TEST_SUITE_P(Descriptors, SegmentJoinerWith, ::testing::Values("sift", "orb"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(SegmentJoiner, AnUnknownDescriptorIsRefused) {
+  const PinholeRadtanCamera camera = flatCamera();
+  JoinKeyframeView view = keyframeView(0, 0.0, Sim3(), viewOf(seabedTexture(1), 0.0, camera), camera, 7);
+  EXPECT_THROW(describeJoinView(view, options("akaze")), std::invalid_argument);
 }
 
 }  // namespace
