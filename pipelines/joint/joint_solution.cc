@@ -58,7 +58,7 @@ GeorefResult posedFromSpline(const GeorefResult& sequential, const JointResult& 
 // a few centimetres away (its absolute position is the INS's, to
 // decimetres); T_C_U and d do not depend on that, but the scan lines must be
 // cast onto the mesh in the mesh's own frame.
-SE3d ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface,
+Sim3 ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface,
                       const std::vector<TimedPose>& frames) {
   Eigen::Matrix3Xd from(3, Eigen::Index(frames.size())), to(3, Eigen::Index(frames.size()));
   Eigen::Index n = 0;
@@ -68,17 +68,20 @@ SE3d ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface,
     to.col(n) = surface.pose(frame.t).t;
     ++n;
   }
-  if (n < 3) return SE3d();
-  const Eigen::Matrix4d G = Eigen::umeyama(from.leftCols(n), to.leftCols(n), false);
-  return SE3d(Eigen::Quaterniond(Eigen::Matrix3d(G.topLeftCorner<3, 3>())).normalized(),
+  if (n < 3) return Sim3::identity();
+  const Eigen::Matrix4d G = Eigen::umeyama(from.leftCols(n), to.leftCols(n), true);
+  const double scale = G.topLeftCorner<3, 3>().col(0).norm();
+  return Sim3(scale, Eigen::Quaterniond(Eigen::Matrix3d(G.topLeftCorner<3, 3>() / scale)).normalized(),
               G.topRightCorner<3, 1>());
 }
 
-JointResult inSurfaceFrame(JointResult joint, const SE3d& G) {
+JointResult inSurfaceFrame(JointResult joint, const Sim3& G) {
   std::vector<SE3d> control_points;
-  for (const SE3d& T : joint.spline.controlPoints()) control_points.push_back(G * T);
+  for (const SE3d& T : joint.spline.controlPoints()) control_points.push_back(G.transformPose(T));
   joint.spline = SE3Splined(joint.spline.t0(), joint.spline.dt(), std::move(control_points));
-  for (auto& [id, p_W] : joint.landmarks_W) p_W = G * p_W;
+  for (auto& [id, p_W] : joint.landmarks_W) p_W = G.apply(p_W);
+  joint.T_C_U.t *= G.scale();
+  if (joint.sigma_translation_m) *joint.sigma_translation_m *= G.scale();
   return joint;
 }
 

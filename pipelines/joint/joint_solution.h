@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/geometry/se3.h"
+#include "core/geometry/sim3.h"
 #include "core/survey/pose_tables.h"
 #include "core/survey/run_calibration.h"
 #include "pipelines/calibration/extrinsic_tie_point.h"
@@ -28,16 +29,24 @@ std::vector<JointTiePoint> jointTiePoints(const std::vector<ExtrinsicTiePoint>& 
 GeorefResult posedFromSpline(const GeorefResult& sequential, const JointResult& joint,
                              const std::vector<double>& line_times);
 
-// The rigid motion G that brings the solved trajectory onto the one the
+// The similarity G that brings the solved trajectory onto the one the
 // surface was made with (least squares over the frames' positions,
-// Eigen::umeyama without scale). The solve may settle the whole trajectory
-// a few centimetres away (its absolute position is the INS's, to
-// decimetres); T_C_U and d do not depend on that, but the scan lines must be
-// cast onto the mesh in the mesh's own frame.
-SE3d ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface, const std::vector<TimedPose>& frames);
+// Eigen::umeyama with scale). The solve may settle the whole trajectory a
+// few centimetres away and its scale a percent or two off: both are the
+// INS's to decimetres and percents, and the joint problem weighs the INS
+// for the trajectory's shape (its position sigmas inflated for the INS's
+// correlated wander, docs/GEOREF.md), not as the maximum-likelihood
+// placement georef found with the stated noise. So the solution keeps
+// georef's placement and scale (the map's, whose 1-sigma map_placement.yaml
+// states), and the scan lines are cast onto the mesh in the mesh's frame.
+Sim3 ontoSurfaceFrame(const SE3Splined& solved, const SE3Splined& surface, const std::vector<TimedPose>& frames);
 
-// The solution moved by G (its spline's control points and landmarks).
-JointResult inSurfaceFrame(JointResult joint, const SE3d& G);
+// The solution moved by G: its spline's control points (a similarity maps a
+// cumulative SE(3) B-spline onto the spline of the mapped control points,
+// scaling translations being an automorphism of SE(3)), its landmarks, and
+// T_C_U's translation, which the tie points measured in the map's units
+// (scaled by G's scale; the rotation and d do not change).
+JointResult inSurfaceFrame(JointResult joint, const Sim3& G);
 
 // The sparse map of `posed` with the joint keyframe poses and landmarks, to
 // mesh again.

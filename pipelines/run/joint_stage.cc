@@ -176,10 +176,11 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
       }
       break;
     }
-    const SE3d G = ontoSurfaceFrame(solved.spline, surface_spline, frames);
-    out << "joint: the solved trajectory moved " << G.t.norm() * 1000.0 << " mm and "
-        << G.q.angularDistance(Eigen::Quaterniond::Identity()) * kRadToDeg
-        << " deg as a whole from the surface's frame; brought back onto it\n";
+    const Sim3 G = ontoSurfaceFrame(solved.spline, surface_spline, frames);
+    out << "joint: the solved trajectory brought back onto the surface's frame (georef's placement and "
+           "scale) by a similarity of scale "
+        << G.scale() << " and " << G.rotation().angularDistance(Eigen::Quaterniond::Identity()) * kRadToDeg
+        << " deg\n";
     const JointResult joint = inSurfaceFrame(solved, G);
     const double rotation_change_deg = inputs.T_C_U_start.q.angularDistance(joint.T_C_U.q) * kRadToDeg;
     const double translation_change_m = (inputs.T_C_U_start.t - joint.T_C_U.t).norm();

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/geometry/so3.h"
 #include "pipelines/joint/joint_solution.h"
 
 namespace hsmap {
@@ -39,6 +40,40 @@ TEST(JointCalibration, TranslationSigmaAddsTheMapScaleUncertaintyAlongTheLeverAr
 
   const RunCalibration without = jointCalibration(solvedLeverArm(), 2);
   EXPECT_EQ(*without.sigma_translation_m, *solvedLeverArm().sigma_translation_m);
+}
+
+// A similarity moves the spline exactly (pose by pose), the landmarks, and
+// the lever arm by its scale: the tie points measured it in the map's units.
+TEST(JointSurfaceFrame, ASimilarityMovesTheSplinePoseByPoseAndScalesTheLeverArm) {
+  std::vector<SE3d> control_points;
+  for (int i = 0; i < 8; ++i) {
+    control_points.emplace_back(expSO3(Eigen::Vector3d(0.02 * i, -0.01 * i, 0.3 + 0.05 * i)),
+                                Eigen::Vector3d(0.4 * i, 0.1 * i * i, 38.0 + 0.05 * i));
+  }
+  JointResult joint = solvedLeverArm();
+  joint.spline = SE3Splined(10.0, 0.5, control_points);
+  joint.landmarks_W = {{7, Eigen::Vector3d(1.0, 2.0, 40.0)}};
+  const Sim3 G(1.018, expSO3(Eigen::Vector3d(0.001, -0.002, 0.01)), Eigen::Vector3d(0.3, -0.2, -0.7));
+  const JointResult moved = inSurfaceFrame(joint, G);
+  for (double t = joint.spline.validBegin(); t <= joint.spline.validEnd(); t += 0.05) {
+    const SE3d expected = G.transformPose(joint.spline.pose(t));
+    const SE3d got = moved.spline.pose(t);
+    EXPECT_LT((got.t - expected.t).norm(), 1e-10) << "t = " << t;
+    EXPECT_LT(got.q.angularDistance(expected.q), 1e-10) << "t = " << t;
+  }
+  EXPECT_LT((moved.landmarks_W[0].second - G.apply(Eigen::Vector3d(1.0, 2.0, 40.0))).norm(), 1e-12);
+  EXPECT_LT((moved.T_C_U.t - 1.018 * joint.T_C_U.t).norm(), 1e-15);
+  EXPECT_LT(moved.T_C_U.q.angularDistance(joint.T_C_U.q), 1e-15);
+
+  // And ontoSurfaceFrame finds that similarity back from the frames.
+  std::vector<TimedPose> frames;
+  for (double t = joint.spline.validBegin(); t <= joint.spline.validEnd(); t += 0.1) {
+    frames.push_back({t, joint.spline.pose(t)});
+  }
+  const Sim3 found = ontoSurfaceFrame(joint.spline, moved.spline, frames);
+  EXPECT_NEAR(found.scale(), 1.018, 1e-9);
+  EXPECT_LT(found.rotation().angularDistance(G.rotation()), 1e-9);
+  EXPECT_LT((found.translation() - G.translation()).norm(), 1e-7);
 }
 
 }  // namespace
