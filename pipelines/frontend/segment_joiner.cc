@@ -214,4 +214,72 @@ SegmentJoin joinKeyframePair(const JoinKeyframeView& earlier, const JoinKeyframe
   return join;
 }
 
+std::vector<std::pair<int, int>> pairsUnderSimilarity(const JoinKeyframeView& earlier, const JoinKeyframeView& later,
+                                                      const PinholeRadtanCamera& camera, const Sim3& S_G_S,
+                                                      double threshold_G, const SegmentJoinOptions& options) {
+  std::vector<std::pair<int, int>> pairs;
+  if (earlier.descriptors.empty() || later.descriptors.empty()) return pairs;
+  const SE3d T_E_G = earlier.T_X_C.inverse();
+  const SE3d T_N_G = S_G_S.transformPose(later.T_X_C).inverse();
+  const double limit = options.max_reprojection_px * options.max_reprojection_px;
+  const int norm = earlier.descriptors.type() == CV_8U ? cv::NORM_HAMMING : cv::NORM_L2;
+  // The new views' described rows in G.
+  std::vector<Eigen::Vector3d> new_G(std::size_t(later.descriptors.rows));
+  for (int r = 0; r < later.descriptors.rows; ++r) {
+    new_G[std::size_t(r)] = S_G_S.apply(later.p_X[std::size_t(later.described[std::size_t(r)])]);
+  }
+  auto gated = [&](int er, int nr) {
+    const std::size_t e = std::size_t(earlier.described[std::size_t(er)]);
+    const std::size_t n = std::size_t(later.described[std::size_t(nr)]);
+    const Eigen::Vector3d& p_G = earlier.p_X[e];
+    const Eigen::Vector3d& q_G = new_G[std::size_t(nr)];
+    if ((p_G - q_G).norm() > threshold_G) return false;
+    const Eigen::Vector3d in_N = T_N_G * p_G, in_E = T_E_G * q_G;
+    if (!(in_N.z() > 0.0) || !(in_E.z() > 0.0)) return false;
+    return (camera.project(in_N) - later.pixels[n]).squaredNorm() <= limit &&
+           (camera.project(in_E) - earlier.pixels[e]).squaredNorm() <= limit;
+  };
+  // Nearest descriptor among the gated candidates, both ways.
+  std::vector<int> best_new(std::size_t(earlier.descriptors.rows), -1);
+  std::vector<double> best_new_distance(best_new.size(), 0.0);
+  std::vector<int> best_earlier(std::size_t(later.descriptors.rows), -1);
+  std::vector<double> best_earlier_distance(best_earlier.size(), 0.0);
+  for (int er = 0; er < earlier.descriptors.rows; ++er) {
+    for (int nr = 0; nr < later.descriptors.rows; ++nr) {
+      if (!gated(er, nr)) continue;
+      const double d = cv::norm(earlier.descriptors.row(er), later.descriptors.row(nr), norm);
+      if (norm == cv::NORM_HAMMING && d > options.max_hamming) continue;
+      if (best_new[std::size_t(er)] < 0 || d < best_new_distance[std::size_t(er)]) {
+        best_new[std::size_t(er)] = nr;
+        best_new_distance[std::size_t(er)] = d;
+      }
+      if (best_earlier[std::size_t(nr)] < 0 || d < best_earlier_distance[std::size_t(nr)]) {
+        best_earlier[std::size_t(nr)] = er;
+        best_earlier_distance[std::size_t(nr)] = d;
+      }
+    }
+  }
+  std::vector<std::pair<int, int>> mutual;  // rows
+  std::vector<double> distances;
+  for (int er = 0; er < earlier.descriptors.rows; ++er) {
+    const int nr = best_new[std::size_t(er)];
+    if (nr < 0 || best_earlier[std::size_t(nr)] != er) continue;
+    mutual.emplace_back(er, nr);
+    distances.push_back(best_new_distance[std::size_t(er)]);
+  }
+  // Where a landmark's own partner is not among the other keyframe's
+  // landmarks, another one may still pass the gates by chance (150
+  // landmarks in 480x360 px put one within 3 px of a given pixel 2.5 % of
+  // the time); its descriptor is of another patch: a distance beyond twice
+  // the median of the pairs is refused.
+  const double limit_distance = distances.size() >= 10 ? 2.0 * upperMedian(distances) : 0.0;
+  for (std::size_t i = 0; i < mutual.size(); ++i) {
+    if (limit_distance > 0.0 && distances[i] > limit_distance) continue;
+    const auto [er, nr] = mutual[i];
+    pairs.emplace_back(earlier.landmark_ids[std::size_t(earlier.described[std::size_t(er)])],
+                       later.landmark_ids[std::size_t(later.described[std::size_t(nr)])]);
+  }
+  return pairs;
+}
+
 }  // namespace hsmap

@@ -151,4 +151,18 @@ struct SegmentJoin {
 SegmentJoin joinKeyframePair(const JoinKeyframeView& earlier, const JoinKeyframeView& later,
                              const PinholeRadtanCamera& camera, const SegmentJoinOptions& options);
 
+// Landmark pairs of two described views under a similarity already accepted
+// (guided matching): an earlier landmark and a new one pair when the new one,
+// taken into G by S_G_S, is within threshold_G of it in 3-D, each reprojects
+// within options.max_reprojection_px of the other's observation (the new
+// keyframe at S_G_S T_S_N), and their descriptors are each other's nearest
+// among the candidates that pass these gates, at a descriptor distance at
+// most twice the pairs' median (a chance neighbour is another patch). The
+// accepted join ties one
+// keyframe pair; these ties reach every keyframe pair that overlaps, which is
+// what holds the new segment's scale along its length. (earlier, new) ids.
+std::vector<std::pair<int, int>> pairsUnderSimilarity(const JoinKeyframeView& earlier, const JoinKeyframeView& later,
+                                                      const PinholeRadtanCamera& camera, const Sim3& S_G_S,
+                                                      double threshold_G, const SegmentJoinOptions& options);
+
 }  // namespace hsmap

@@ -119,6 +119,33 @@ TEST_P(SegmentJoinerWith, TwoKeyframesOfUnrelatedSeabedGiveNoJoin) {
   std::cout << "refused: " << join.failure << "\n";
 }
 
+// Guided matching under an accepted similarity pairs each landmark with
+// itself, also where the descriptors alone would be ambiguous, and pairs
+// nothing under a similarity that is wrong by more than the gates.
+TEST_P(SegmentJoinerWith, UnderTheAcceptedSimilarityEveryLandmarkPairsWithItself) {
+  const PinholeRadtanCamera camera = flatCamera();
+  const cv::Mat texture = seabedTexture(1);
+  const double dx = 0.06;
+  JoinKeyframeView earlier = keyframeView(0, 0.0, Sim3(), viewOf(texture, 0.0, camera), camera, 7);
+  const Sim3 S_S_G(2.5, expSO3(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(1.0, 2.0, -0.5));
+  JoinKeyframeView later = keyframeView(1, dx, S_S_G, viewOf(texture, dx, camera), camera, 7);
+  for (std::size_t i = 0; i < later.pixels.size(); ++i) later.pixels[i].x() -= kFocal * dx;
+  for (std::size_t i = 0; i < later.p_X.size(); ++i) later.p_X[i] = S_S_G.apply(earlier.p_X[i]);
+  describeJoinView(earlier, options(GetParam()));
+  describeJoinView(later, options(GetParam()));
+  const double threshold_G = 0.05;  // 5 % of the 1 m altitude
+  const auto pairs = pairsUnderSimilarity(earlier, later, camera, S_S_G.inverse(), threshold_G, options(GetParam()));
+  EXPECT_GE(pairs.size(), std::size_t(earlier.descriptors.rows) * 9 / 10);
+  for (const auto& [e, n] : pairs) EXPECT_EQ(e % 1000, n % 1000);
+  // 2 cm of translation off at 1 m is 8 px in both views: beyond the 3 px
+  // gate, where only another landmark that happens to fall within it can
+  // pair (150 landmarks in the image: a few percent of them).
+  const Sim3 wrong = Sim3(1.0, Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.02, 0.0, 0.0)) * S_S_G.inverse();
+  const auto chance = pairsUnderSimilarity(earlier, later, camera, wrong, threshold_G, options(GetParam()));
+  EXPECT_LE(chance.size(), std::size_t(earlier.descriptors.rows) / 20);
+  for (const auto& [e, n] : chance) EXPECT_NE(e % 1000, n % 1000);
+}
+
 INSTANTIATE_TEST_SUITE_P(Descriptors, SegmentJoinerWith, ::testing::Values("sift", "orb"),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
