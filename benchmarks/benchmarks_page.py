@@ -47,8 +47,16 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 PRESETS = ["tiny", "rugged", "flat", "low-relief", "transect-100m"]
 VARIANTS = ["stacked", "planar", "sequential", "joint"]
-SECTIONS = ["simulate", "inspect", "frontend", "georef", "surface", "refine", "joint", "variants",
+SECTIONS = ["simulate", "inspect", "frontend", "georef", "scale", "surface", "refine", "joint", "variants",
             "resume", "products", "tiny", "unlike", "kernels", "io"]
+# Surveys written from a configuration rather than a preset (section
+# `scale`): few INS fixes, and tracking losses.
+CONFIG_SURVEYS = {
+    "short": "benchmarks/short_survey.yaml",
+    "short-no-attitude": "benchmarks/short_survey_no_attitude.yaml",
+    "rugged-black-frames": "benchmarks/rugged_black_frames.yaml",
+    "rugged-blackout-2s": "benchmarks/rugged_blackout_2s.yaml",
+}
 TIME = "/usr/bin/time"
 
 # ---------------------------------------------------------------- helpers
@@ -276,6 +284,8 @@ UNLIKE_CONFIG = "benchmarks/frontend_unlike_presets.yaml"
 def simulate_argv(ctx, name):
     if name == "unlike":
         return [ctx.hsmap(), "simulate", "--config", REPO / UNLIKE_CONFIG, "--out", ctx.survey(name)]
+    if name in CONFIG_SURVEYS:
+        return [ctx.hsmap(), "simulate", "--config", REPO / CONFIG_SURVEYS[name], "--out", ctx.survey(name)]
     return [ctx.hsmap(), "simulate", "--preset", name, "--out", ctx.survey(name)]
 
 
@@ -697,6 +707,10 @@ def section_needs(section, surveys):
         return [f"frontend/{n}" for n in twenty]
     if section in ("georef", "refine"):
         return [f"run/{n}/sequential" for n in twenty]
+    if section == "scale":
+        presets = [f"run/{n}/sequential" for n in s if n != "transect-100m"]
+        return presets + [f"run/{n}/{v}" for n in ("short", "short-no-attitude") for v in ("sequential", "joint")] + \
+            [f"run/{n}/sequential" for n in ("rugged-black-frames", "rugged-blackout-2s")]
     if section == "surface":
         return [f"run/{n}/{v}" for n in twenty for v in ("sequential", "joint")]
     if section == "joint":
@@ -725,7 +739,8 @@ def plan_order(mid):
     kind, _, rest = mid.partition("/")
     survey = rest.split("/")[0] if kind in ("simulate", "run", "resume", "restart", "inspect", "frontend",
                                              "products") else None
-    survey_rank = {"tiny": 0, "rugged": 1, "flat": 2, "low-relief": 3}.get(survey, 6 if survey else 5)
+    survey_rank = {"tiny": 0, "short": 1, "short-no-attitude": 1, "rugged": 1, "flat": 2, "low-relief": 3,
+                   "rugged-black-frames": 4, "rugged-blackout-2s": 4}.get(survey, 6 if survey else 5)
     kind_rank = {"simulate": 0, "inspect": 1, "run": 2, "resume": 3, "restart": 3, "frontend": 4, "products": 5,
                  "gbench": 6, "envi": 7, "geotiff": 8}[kind]
     variant_rank = 0
@@ -833,7 +848,7 @@ class Page:
                                                 "products") else None
         if self.ctx.args.from_work:
             return "not measured: no result in WORK (--from-work measures nothing)"
-        if survey and survey not in self.surveys:
+        if survey and survey in PRESETS and survey not in self.surveys:
             return f"not measured: {survey} not among --surveys"
         if kind == "simulate" and (self.ctx.survey(rest) / "survey.yaml").exists():
             return f"not measured: {self.ctx.path(self.ctx.survey(rest))} existed (delete it to time the simulation)"
@@ -1021,6 +1036,47 @@ def sections(page):
     out["georef"] = ("Geo-referencing (`georef` stage)",
                      ["From the `sequential` runs; **INS floor** is `ins_floor_rgb_ate_m` (docs/EVALUATE.md): the "
                       "true trajectory placed by the INS fixes alone."], rows)
+
+    # scale: the map's size against what the INS allows, and tracking losses
+    rows = []
+    for n in ["tiny", "rugged", "flat", "low-relief", "short", "short-no-attitude"]:
+        floor = metric_value(page, n, "sequential", "ins_floor_scale_error")
+        goal = Goal("≤ 1.5 × INS floor" + (f" ({fmt_pct(1.5 * floor)})" if floor is not None else ""),
+                    (lambda v, p, f=floor: v <= 1.5 * f) if floor is not None else None)
+        rows.append((f"{n}: `rgb_scale_error` / INS floor (sequential)", goal,
+                     combine(page.metric(n, "sequential", "rgb_scale_error", fmt_pct),
+                             page.metric(n, "sequential", "ins_floor_scale_error", fmt_pct))))
+        floor = metric_value(page, n, "sequential", "ins_floor_rgb_ate_m")
+        goal = Goal("≤ 1.1 × INS floor" + (f" ({fmt_cm(1.1 * floor)})" if floor is not None else ""),
+                    (lambda v, p, f=floor: v <= 1.1 * f) if floor is not None else None)
+        rows.append((f"{n}: `rgb_ate_m` / INS floor (sequential)", goal,
+                     combine(page.metric(n, "sequential", "rgb_ate_m", fmt_cm),
+                             page.metric(n, "sequential", "ins_floor_rgb_ate_m", fmt_cm))))
+    for n in ["short", "short-no-attitude"]:
+        rows.append((f"{n}: `extrinsic_translation_error_m` (joint)", at_most(0.01, "≤ 1 cm"),
+                     page.metric(n, "joint", "extrinsic_translation_error_m", fmt_mm)))
+        rows.append((f"{n}: `ortho_registration_rmse_m` (sequential)", NO_GOAL,
+                     page.metric(n, "sequential", "ortho_registration_rmse_m", fmt_mm)))
+    for n in ["rugged-black-frames", "rugged-blackout-2s"]:
+        for key, fmt in (("mesh_completeness", fmt_frac), ("mesh_accuracy_m", fmt_mm),
+                         ("ortho_registration_rmse_m", fmt_mm)):
+            reference = metric_value(page, "rugged", "sequential", key)
+            if key == "mesh_completeness":
+                goal = Goal("≥ 0.8 × rugged's" + (f" ({fmt(0.8 * reference)})" if reference is not None else ""),
+                            (lambda v, p, r=reference: v >= 0.8 * r) if reference is not None else None)
+            else:
+                goal = Goal("≤ 1.2 × rugged's" + (f" ({fmt(1.2 * reference)})" if reference is not None else ""),
+                            (lambda v, p, r=reference: v <= 1.2 * r) if reference is not None else None)
+            rows.append((f"{n}: `{key}` (sequential)", goal, page.metric(n, "sequential", key, fmt)))
+    out["scale"] = ("The map's scale, and tracking losses (`frontend` and `georef` stages)",
+                    ["`rgb_scale_error` against `ins_floor_scale_error` (docs/EVALUATE.md: the true trajectory "
+                     "fitted to the same INS fixes by the same estimator), from the `sequential` runs. `short` and "
+                     "`short-no-attitude`: 4.4 m of track, 9-12 INS fixes "
+                     "(`hsmap simulate --config benchmarks/short_survey.yaml`, `short_survey_no_attitude.yaml`). "
+                     "`rugged-black-frames` (8 black frames) and `rugged-blackout-2s` (2 s of black frames): "
+                     "`rugged` with a tracking loss (`benchmarks/rugged_black_frames.yaml`, "
+                     "`rugged_blackout_2s.yaml`), against `rugged` itself. Three seeds of each short survey, "
+                     "with the stated 1-sigma of the scale: docs/GEOREF.md."], rows)
 
     # surface
     rows = []
