@@ -34,9 +34,11 @@ void runGeorefStage(const StageContext& context) {
                                  });
     if (frames) frames->finish();
   }
-  // The joint variant starts from the sequential result and says so in its
-  // files; the joint stage replaces them in the contract's paths.
-  if (context.variant == Variant::joint) result.variant = "joint";
+  // The joint variant starts from the sequential result: the same files
+  // (labelled sequential) whichever variant runs the stage, so that a georef
+  // folder serves both (stage_fingerprints.h). The joint stage replaces them
+  // in the contract's paths; a joint run stopped before it publishes them
+  // relabelled (published_calibration.h).
   const auto folder = context.run / stage_folders::georef;
   writeGeorefOutputs(folder, result);
   out << result.summary() << "\n";

@@ -20,6 +20,8 @@
 #include "core/util/stage_timer.h"
 #include "core/util/tee_stream.h"
 #include "core/util/thread_budget.h"
+#include "pipelines/run/published_calibration.h"
+#include "pipelines/run/stage_fingerprints.h"
 #include "pipelines/run/stage_record.h"
 #include "pipelines/run/stage_table.h"
 
@@ -82,10 +84,15 @@ void removeStage(const fs::path& run, const StageDefinition& stage) {
   for (const fs::path& path : stage.outputs) fs::remove_all(run / path);
 }
 
-void publish(const fs::path& run, const StageDefinition& stage) {
+void publish(const fs::path& run, const StageDefinition& stage, Variant variant) {
   for (const auto& [owned, contract] : stage.published) {
     std::error_code error;
-    if (fs::is_regular_file(run / owned, error)) publishFile(run / owned, run / contract);
+    if (!fs::is_regular_file(run / owned, error)) continue;
+    if (contract == results_paths::calibration_yaml) {
+      publishCalibration(run / owned, run / contract, toString(variant));
+    } else {
+      publishFile(run / owned, run / contract);
+    }
   }
 }
 
@@ -144,16 +151,12 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
 
   // Each stage's fingerprint: its options, the survey's files and the
   // previous stage's fingerprint.
-  const std::string stamp = surveyStamp(options.survey, run);
   std::vector<std::string> fingerprints, options_texts;
-  const int stage_count = int(stages.size());
-  for (int i = 0; i < stage_count; ++i) {
-    const StageDefinition& stage = stageDefinition(stages[std::size_t(i)]);
-    options_texts.push_back(stage.options_text(options));
-    fingerprints.push_back(fingerprintOf(std::string("hsmap ") + HSMAP_VERSION + "\nstage: " + stage.name +
-                                         "\n" + options_texts.back() + "survey:\n" + stamp + "previous: " +
-                                         (i > 0 ? fingerprints[std::size_t(i) - 1] : std::string())));
+  for (const StageFingerprint& stage : stageFingerprints(options, surveyStamp(options.survey, run))) {
+    options_texts.push_back(stage.options_text);
+    fingerprints.push_back(stage.fingerprint);
   }
+  const int stage_count = int(stages.size());
 
   // Another survey's run is replaced only on purpose.
   for (StageId id : allStages()) {
@@ -241,7 +244,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
       out << "stage " << stage.name << ": up to date, skipped (ran in " << secondsText(done.time_s)
           << "; --force or --from " << stage.name << " redoes it)\n";
       record.stages.push_back({stage.name, done.time_s, done.peak_rss_mb});
-      publish(run, stage);
+      publish(run, stage, options.variant);
       continue;
     }
     out << "stage " << stage.name << "\n";
@@ -265,7 +268,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
     done.outputs = listStageOutputs(run, stage.outputs);
     writeStageRecord(stageRecordPath(run, stage.name), done);
     record.stages.push_back({stage.name, done.time_s, done.peak_rss_mb});
-    publish(run, stage);
+    publish(run, stage, options.variant);
   }
 
   // When nothing ran, the stages after --until that are still up to date
@@ -277,7 +280,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
       std::optional<StageRecordFile> later;
       std::string why;
       if (upToDate(run, stage.name, fingerprints[std::size_t(i)], options_texts[std::size_t(i)], later, why)) {
-        publish(run, stage);
+        publish(run, stage, options.variant);
         continue;
       }
       for (int j = i; j < stage_count; ++j) removeStage(run, stageDefinition(stages[std::size_t(j)]));

@@ -46,7 +46,11 @@ const std::vector<StageDefinition>& definitions() {
        [](const RunOptions&) { return std::string(); },
        [](const StageContext& c, const RunOptions&) { runFrontendStage(c); }},
       {StageId::georef, "georef", {stage_folders::georef}, trajectoryPublished(stage_folders::georef), {},
-       [](const RunOptions& o) { return std::string("variant: ") + toString(o.variant) + "\n"; },
+       // What georef's result depends on: the front-end's map, or the INS
+       // alone (planar); not which variant asked (stage_fingerprints.h).
+       [](const RunOptions& o) {
+         return std::string("georef_from: ") + (o.variant == Variant::planar ? "ins" : "frontend") + "\n";
+       },
        [](const StageContext& c, const RunOptions&) { runGeorefStage(c); }},
       {StageId::surface, "surface", {stage_folders::surface},
        {{fs::path(stage_folders::surface) / stage_folders::mesh_ply, results_paths::mesh_ply}},
