@@ -15,7 +15,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config time python3
   libeigen3-dev libceres-dev libsuitesparse-dev
   libopencv-dev libembree-dev libgeographiclib-dev libcgal-dev libgdal-dev
-  libtbb-dev libcli11-dev libyaml-cpp-dev
+  libtbb-dev libcli11-dev libyaml-cpp-dev zlib1g-dev
   gdal-bin  # GDAL's command-line tools: gdalinfo (tests), gdal_translate (benchmarks)
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "core/io/envi_header.h"
+#include "core/survey/rgb_frame_check.h"
 #include "core/util/median.h"
 #include "core/util/message_text.h"
 
@@ -88,6 +89,7 @@ SurveySummary summarizeSurvey(const Survey& survey) {
   summary.origin_from_config = survey.origin_from_config;
   summary.truth = survey.truth;
   summary.warnings = survey.warnings;
+  for (std::string& warning : checkRgbFramesWhole(survey.rgb)) summary.warnings.push_back(std::move(warning));
   return summary;
 }
 

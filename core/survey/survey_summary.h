@@ -67,6 +67,8 @@ struct SurveySummary {
   std::vector<std::string> warnings;
 };
 
+// Reads every RGB frame file once (rgb_frame_check.h): a damaged frame is
+// one of the warnings.
 SurveySummary summarizeSurvey(const Survey& survey);
 
 // Human-readable multi-line report.

@@ -97,6 +97,34 @@ TEST(SummarizeSurvey, SampleSurvey) {
   }
 }
 
+// inspect reads every frame whole: a truncated frame and a first frame with
+// a changed byte are each named in a warning, with their frames.csv line;
+// the survey still loads (the run bridges them as lost frames).
+TEST(SummarizeSurvey, DamagedFramesAreNamedInTheWarnings) {
+  testing::TempFolder temp("summary-damaged");
+  writeSampleSurvey(temp / "sample");
+  const Survey whole = loadSurvey(temp / "sample");
+  ASSERT_TRUE(summarizeSurvey(whole).warnings.empty());
+  const auto first = whole.rgb.framePath(0), tenth = whole.rgb.framePath(10);
+  std::string bytes = testing::readText(tenth);
+  const std::size_t cut = bytes.size() / 2;
+  testing::writeText(tenth, bytes.substr(0, cut));
+  bytes = testing::readText(first);
+  bytes[bytes.size() / 2] = char(bytes[bytes.size() / 2] ^ 0x40);
+  testing::writeText(first, bytes);
+
+  const SurveySummary summary = summarizeSurvey(loadSurvey(temp / "sample"));
+  ASSERT_EQ(summary.warnings.size(), 2u);
+  EXPECT_EQ(summary.warnings[0].rfind("RGB frame 0 (" + first.string() + ", frames.csv line 2) is damaged: damaged: ", 0),
+            0u) << summary.warnings[0];
+  EXPECT_NE(summary.warnings[0].find("fails its CRC; the front-end will count it as a lost frame and bridge it"),
+            std::string::npos) << summary.warnings[0];
+  EXPECT_EQ(summary.warnings[1].rfind("RGB frame 10 (" + tenth.string() + ", frames.csv line 12) is damaged: truncated: "
+                                      "the file ends at byte " + std::to_string(cut),
+                                      0),
+            0u) << summary.warnings[1];
+}
+
 TEST(PrintSurveySummary, ListsGapsTruthAndWarnings) {
   SurveySummary summary;
   summary.name = "gappy";
