@@ -23,8 +23,8 @@ void writeAtomically(const std::filesystem::path& file, const std::string& text)
 
 // ---- calibration.yaml ------------------------------------------------------
 
-std::vector<double> readAttenuation(const StrictYamlMap& root, const YAML::Node& document) {
-  const std::string key = "water_attenuation_per_m";
+// A non-empty list of numbers >= 0, one per UHI band, at `key`.
+std::vector<double> readPerBandList(const StrictYamlMap& root, const YAML::Node& document, const std::string& key) {
   if (!root.has(key)) root.fail(key, "missing required key");
   const YAML::Node list = document[key];
   const std::string expected = "expected a non-empty list of numbers >= 0 (one per UHI band)";
@@ -59,7 +59,7 @@ TruthCalibration parseTruthCalibration(const std::filesystem::path& file,
   }
   const StrictYamlMap root(file, document, "", 1,
                            {"format", "T_C_U", "time_offset_s", "T_B_C", "rgb_camera",
-                            "uhi_camera", "water_attenuation_per_m"});
+                            "uhi_camera", "water_attenuation_per_m", "backscatter_dn"});
   const std::string format = root.text("format");
   if (format != TruthCalibration::kFormat) {
     root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
@@ -71,7 +71,15 @@ TruthCalibration parseTruthCalibration(const std::filesystem::path& file,
   calibration.T_B_C = readRigidTransform(root.map("T_B_C", {"rotation_wxyz", "translation_m"}));
   calibration.rgb_camera = readPinholeRadtanCamera(root, "rgb_camera");
   calibration.uhi_camera = readPushbroomCamera(root, "uhi_camera");
-  calibration.water_attenuation_per_m = readAttenuation(root, document);
+  calibration.water_attenuation_per_m = readPerBandList(root, document, "water_attenuation_per_m");
+  if (root.has("backscatter_dn")) {
+    calibration.backscatter_dn = readPerBandList(root, document, "backscatter_dn");
+    if (calibration.backscatter_dn.size() != calibration.water_attenuation_per_m.size()) {
+      root.fail("backscatter_dn", "expected " + std::to_string(calibration.water_attenuation_per_m.size()) +
+                                      " numbers (one per UHI band, as water_attenuation_per_m), got " +
+                                      std::to_string(calibration.backscatter_dn.size()));
+    }
+  }
   return calibration;
 }
 
@@ -95,6 +103,11 @@ std::string emitTruthCalibration(const TruthCalibration& calibration) {
   out << YAML::Key << "water_attenuation_per_m" << YAML::Value << YAML::Flow << YAML::BeginSeq;
   for (double c : calibration.water_attenuation_per_m) emitNumber(out, c);
   out << YAML::EndSeq;
+  if (!calibration.backscatter_dn.empty()) {
+    out << YAML::Key << "backscatter_dn" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double b : calibration.backscatter_dn) emitNumber(out, b);
+    out << YAML::EndSeq;
+  }
   out << YAML::EndMap;
   if (!out.good()) {
     throw std::logic_error("writeTruthCalibration: YAML emitter: " + out.GetLastError());

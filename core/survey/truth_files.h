@@ -24,6 +24,9 @@
 //   uhi_camera: {model: pushbroom, ...}       keys as survey.yaml's uhi.camera
 //   water_attenuation_per_m: [c_1, ..., c_bands]  Beer-Lambert coefficient per
 //                                                 UHI band (1/m), each finite and >= 0
+//   backscatter_dn: [b_1, ..., b_bands]        optional: the additive backscatter
+//                                                 per band (DN, >= 0), as many as
+//                                                 water_attenuation_per_m; absent: zeros
 // The band count cannot be checked here (it is the cube's); the list must be
 // non-empty. Rotations follow survey_config.h's rule (norm within 1e-3 of 1).
 //
@@ -66,6 +69,7 @@ struct TruthCalibration {
   PinholeRadtanParameters rgb_camera;
   PushbroomParameters uhi_camera;
   std::vector<double> water_attenuation_per_m;
+  std::vector<double> backscatter_dn;  // empty: absent (zeros)
 };
 
 std::vector<TruthPose> readTruthPoses(const std::filesystem::path& file);

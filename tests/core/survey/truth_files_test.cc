@@ -292,7 +292,7 @@ TEST_F(TruthCalibrationErrorTest, UnknownKey) {
   const auto path = variant("time_offset_s:", "time_ofset_s:");
   expectInputError([&] { readTruthCalibration(path); }, path,
                    "line 4, key time_ofset_s: unknown key; expected one of: format, T_C_U, "
-                   "time_offset_s, T_B_C, rgb_camera, uhi_camera, water_attenuation_per_m");
+                   "time_offset_s, T_B_C, rgb_camera, uhi_camera, water_attenuation_per_m, backscatter_dn");
 }
 
 TEST_F(TruthCalibrationErrorTest, AttenuationMustBeANonEmptyListOfNonNegativeNumbers) {
@@ -313,6 +313,25 @@ TEST_F(TruthCalibrationErrorTest, AttenuationMustBeANonEmptyListOfNonNegativeNum
   expectInputError([&] { readTruthCalibration(variant(list, "[0.05, [1]]")); },
                    folder_ / "calibration.yaml",
                    "line 8, key water_attenuation_per_m[1]: expected a number, got a list");
+}
+
+// The contract's optional backscatter per band: read and written when
+// given, one per band as the attenuation.
+TEST_F(TruthCalibrationErrorTest, BackscatterIsOptionalAndOnePerBand) {
+  const std::string list = "water_attenuation_per_m: [0.05, 0.0412345678901, 0.3, 0.3333333333333333]\n";
+  const auto path = variant(list, list + "backscatter_dn: [12.5, 0, 3, 4]\n");
+  const TruthCalibration read = readTruthCalibration(path);
+  EXPECT_EQ(read.backscatter_dn, (std::vector<double>{12.5, 0.0, 3.0, 4.0}));
+  EXPECT_TRUE(readTruthCalibration(variant("format: hsmap-truth/1", "format: hsmap-truth/1")).backscatter_dn.empty());
+  const auto again = folder_ / "again.yaml";
+  writeTruthCalibration(again, read);
+  EXPECT_EQ(readTruthCalibration(again).backscatter_dn, read.backscatter_dn);
+  expectInputError([&] { readTruthCalibration(variant(list, list + "backscatter_dn: [1, 2]\n")); },
+                   folder_ / "calibration.yaml",
+                   "line 9, key backscatter_dn: expected 4 numbers (one per UHI band, as water_attenuation_per_m), "
+                   "got 2");
+  expectInputError([&] { readTruthCalibration(variant(list, list + "backscatter_dn: [1, 2, -3, 4]\n")); },
+                   folder_ / "calibration.yaml", "line 9, key backscatter_dn[2]: expected a number >= 0, got -3");
 }
 
 TEST_F(TruthCalibrationErrorTest, BadCameraAndRotation) {
