@@ -62,13 +62,15 @@ PUBLIC_HEADERS = {
     "joint": {"joint_problem.h", "joint_solution.h", "joint_spline.h"},
     "evaluate": {"evaluate_run.h"},
     "simulate": {"simulate_survey.h", "simulation_config.h", "simulation_config_yaml.h"},
-    "run": {"runner.h", "run_options.h"},
+    "run": {"runner.h", "run_options.h", "stage_table.h", "stage_record.h", "stage_fingerprints.h"},
+    "compare": {"compare_runner.h", "variant_list.h"},
 }
 # What tools/ may include from pipelines/.
 TOOL_ENTRY_POINTS = {"pipelines/run/runner.h", "pipelines/run/run_options.h",
                      "pipelines/simulate/simulate_survey.h", "pipelines/simulate/simulation_config.h",
                      "pipelines/simulate/simulation_config_yaml.h", "pipelines/evaluate/evaluate_run.h",
-                     "pipelines/sample_survey.h"}
+                     "pipelines/sample_survey.h", "pipelines/compare/compare_runner.h",
+                     "pipelines/compare/variant_list.h"}
 STAGE_FILE = re.compile(r"^pipelines/run/(\w+)_stage\.(h|cc)$")
 
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/util/input_error.h"
+#include "tools/hsmap/compare_command.h"
 #include "tools/hsmap/evaluate_command.h"
 #include "tools/hsmap/inspect_command.h"
 #include "tools/hsmap/run_command.h"
@@ -39,6 +40,8 @@ int main(int argc, char** argv) {
   CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);
   hsmap::EvaluateOptions evaluate_options;
   CLI::App* evaluate = hsmap::addEvaluateCommand(app, evaluate_options);
+  hsmap::CompareCommandLine compare_options;
+  CLI::App* compare = hsmap::addCompareCommand(app, compare_options);
 
   try {
     app.parse(argc, argv);
@@ -51,6 +54,7 @@ int main(int argc, char** argv) {
     if (inspect->parsed()) return hsmap::runInspectCommand(inspect_options, std::cout);
     if (run->parsed()) return hsmap::runRunCommand(run_options, std::cout, std::cerr);
     if (evaluate->parsed()) return hsmap::runEvaluateCommand(evaluate_options, std::cout);
+    if (compare->parsed()) return hsmap::runCompareCommand(compare_options, std::cout, std::cerr);
     if (sample->parsed()) return hsmap::runSampleCommand(sample_options, std::cout, std::cerr);
     if (simulate->parsed()) {
       return hsmap::runSimulateCommand(simulate_options, std::cout, std::cerr);
