@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <mutex>
 #include <optional>
 #include <ostream>
 
@@ -14,6 +16,7 @@
 #include "pipelines/compare/compare_html.h"
 #include "pipelines/compare/compare_markdown.h"
 #include "pipelines/compare/compare_plan.h"
+#include "pipelines/compare/compare_schedule.h"
 #include "pipelines/compare/metrics_file.h"
 #include "pipelines/compare/stage_sharing.h"
 #include "pipelines/run/stage_record.h"
@@ -38,8 +41,8 @@ std::string seconds(double value) {
 // terminal as they complete, and its last error line kept for the table.
 class ChildOutput {
  public:
-  ChildOutput(std::ofstream& log, std::ostream& out, std::string prefix)
-      : log_(log), out_(out), prefix_(std::move(prefix)) {}
+  ChildOutput(std::ofstream& log, std::function<void(const std::string&)> say, std::string prefix)
+      : log_(log), say_(std::move(say)), prefix_(std::move(prefix)) {}
 
   void operator()(std::string_view chunk) {
     log_ << chunk;
@@ -64,11 +67,11 @@ class ChildOutput {
     if (line.starts_with("error: ")) last_error_ = line.substr(7);
     // The runner's "stage X" lines (not its closing "stage times ..." table).
     const bool stage_line = line.starts_with("stage ") && !line.starts_with("stage times");
-    if (stage_line || line.starts_with("error: ")) out_ << prefix_ << line << "\n" << std::flush;
+    if (stage_line || line.starts_with("error: ")) say_(prefix_ + line);
   }
 
   std::ofstream& log_;
-  std::ostream& out_;
+  std::function<void(const std::string&)> say_;
   std::string prefix_;
   std::string line_;
   std::string last_error_;
@@ -92,6 +95,10 @@ int runCompare(const CompareOptions& options, const HsmapCommand& hsmap, std::os
   const auto started = std::chrono::steady_clock::now();
   if (options.variants.empty()) {
     err << "error: --variants: expected at least one variant\n";
+    return 1;
+  }
+  if (options.jobs < 1) {
+    err << "error: --jobs: expected 1 or more runs at a time, got " << options.jobs << "\n";
     return 1;
   }
   if (options.threads < 0) {
@@ -129,68 +136,110 @@ int runCompare(const CompareOptions& options, const HsmapCommand& hsmap, std::os
     }
   }
 
-  std::vector<VariantOutcome> outcomes;
-  for (std::size_t i = 0; i < plans.size(); ++i) {
-    const VariantPlan& plan = plans[i];
-    const std::string name = toString(plan.variant);
-    const fs::path run = dir / name;
-    const fs::path log_path = dir / (name + ".log");
-    const std::string counter = "[" + std::to_string(i + 1) + "/" + std::to_string(plans.size()) + "] ";
-    const auto variant_start = std::chrono::steady_clock::now();
+  // Each variant's state while its steps run (one step of a variant at a
+  // time: the second waits for the first).
+  struct VariantState {
     VariantOutcome outcome;
-    outcome.variant = name;
-    std::ofstream log(log_path, std::ios::trunc);
-    if (!log) {
-      err << "error: " << log_path.string() << ": cannot open the file for writing\n";
+    std::ofstream log;
+    std::optional<std::chrono::steady_clock::time_point> started;
+  };
+  std::vector<VariantState> states(plans.size());
+  for (std::size_t v = 0; v < plans.size(); ++v) {
+    const std::string name = toString(plans[v].variant);
+    states[v].outcome.variant = name;
+    states[v].log.open(dir / (name + ".log"), std::ios::trunc);
+    if (!states[v].log) {
+      err << "error: " << (dir / (name + ".log")).string() << ": cannot open the file for writing\n";
       return 1;
     }
-    out << counter << name << ": running into " << run.string() << " (log " << log_path.string() << ")\n";
+  }
+  std::mutex out_mutex;  // the steps' lines, whole, one at a time
+  auto say = [&](const std::string& line) {
+    std::lock_guard lock(out_mutex);
+    out << line << "\n" << std::flush;
+  };
 
-    // The shared stages, from the donor's folder.
+  const std::vector<CompareTask> tasks = scheduleCompare(plans);
+  auto run_task = [&](std::size_t t) {
+    const CompareTask& task = tasks[t];
+    const VariantPlan& plan = plans[task.variant];
+    VariantState& state = states[task.variant];
+    VariantOutcome& outcome = state.outcome;
+    const std::string name = outcome.variant;
+    const fs::path run = dir / name;
+    if (!outcome.succeeded()) return;  // its first step failed
+    if (!state.started) state.started = std::chrono::steady_clock::now();
+    say("[" + name + "] " + (task.until.empty() ? "running" : "running up to " + task.until + " (shared)") +
+        " into " + run.string() + " (log " + (dir / (name + ".log")).string() + ")");
+
     std::vector<std::string> arguments = {"run", survey.string(), "--out", run.string(), "--variant", name,
                                           "--threads", std::to_string(options.threads)};
-    if (plan.donor) {
+    if (!task.until.empty()) arguments.insert(arguments.end(), {"--until", task.until});
+    // The stages this step starts at: the first not shared (nor already run
+    // by this variant's first step); --force redoes from there only, so a
+    // shared stage is still run once.
+    std::size_t from = 0;
+    std::optional<std::size_t> after_own_step;  // the second step of a donor: after its shared stages
+    for (const CompareTask& other : tasks) {
+      if (task.until.empty() && other.variant == task.variant && !other.until.empty()) {
+        after_own_step = std::size_t(stageIndex(variantStages(plan.variant), other.until)) + 1;
+      }
+    }
+    if (after_own_step) {
+      from = *after_own_step;
+    } else if (plan.donor && !plan.shared.empty()) {
       const fs::path donor = dir / toString(*plan.donor);
       for (StageId stage : plan.shared) {
         std::string why;
-        if (!shareStage(donor, run, stage, why)) {
-          outcome.status = "failed: not run: its stage " + std::string(stageDefinition(stage).name) +
-                           ", shared with " + toString(*plan.donor) + ", did not finish there (see " +
-                           (dir / (std::string(toString(*plan.donor)) + ".log")).string() + ")";
+        try {
+          if (!shareStage(donor, run, stage, why)) {
+            outcome.status = "failed: not run: its stage " + std::string(stageDefinition(stage).name) +
+                             ", shared with " + toString(*plan.donor) + ", did not finish there (see " +
+                             (dir / (std::string(toString(*plan.donor)) + ".log")).string() + ")";
+            break;
+          }
+        } catch (const std::exception& failure) {
+          outcome.status = "failed: sharing its stage " + std::string(stageDefinition(stage).name) + " from " +
+                           toString(*plan.donor) + ": " + failure.what();
           break;
         }
         outcome.shared_stages.push_back(stageDefinition(stage).name);
       }
       outcome.shared_from = toString(*plan.donor);
-      if (outcome.succeeded()) {
-        out << counter << name << ": " << stageNames(plan.shared) << " linked in from " << donor.string() << "\n";
+      if (!outcome.succeeded()) {
+        say("[" + name + "] " + outcome.status);
+        return;
       }
-      // --force redoes the variant's own stages, not the shared ones just
-      // made by the donor.
-      if (options.force && plan.shared.size() < variantStages(plan.variant).size()) {
-        arguments.insert(arguments.end(),
-                         {"--from", stageDefinition(variantStages(plan.variant)[plan.shared.size()]).name});
+      say("[" + name + "] " + stageNames(plan.shared) + " linked in from " + donor.string());
+      from = plan.shared.size();
+    }
+    if (options.force) {
+      const auto& stages = variantStages(plan.variant);
+      if (from == 0) {
+        arguments.push_back("--force");
+      } else if (from < stages.size()) {
+        arguments.insert(arguments.end(), {"--from", stageDefinition(stages[from]).name});
       }
-    } else if (options.force) {
-      arguments.push_back("--force");
     }
 
-    if (outcome.succeeded()) {
-      ChildOutput output(log, out, "  " + name + " | ");
-      const int status = hsmap(arguments, [&](std::string_view chunk) { output(chunk); });
-      if (status != 0) outcome.status = "failed: " + whyFailed("run", status, output.lastError());
-    }
+    ChildOutput output(state.log, say, "  " + name + " | ");
+    const int status = hsmap(arguments, [&](std::string_view chunk) { output(chunk); });
+    if (status != 0) outcome.status = "failed: " + whyFailed("run", status, output.lastError());
+    if (!task.until.empty()) return;  // the rest, and the evaluation, in its second step
+
+    std::error_code ignored;
     if (outcome.succeeded() && has_truth) {
-      ChildOutput output(log, out, "  " + name + " | ");
-      const int status = hsmap({"evaluate", run.string(), "--truth", (survey / "truth").string()},
-                               [&](std::string_view chunk) { output(chunk); });
-      if (status != 0) outcome.status = "failed: evaluate: " + whyFailed("evaluate", status, output.lastError());
+      ChildOutput evaluation(state.log, say, "  " + name + " | ");
+      const int evaluated = hsmap({"evaluate", run.string(), "--truth", (survey / "truth").string()},
+                                  [&](std::string_view chunk) { evaluation(chunk); });
+      if (evaluated != 0) {
+        outcome.status = "failed: evaluate: " + whyFailed("evaluate", evaluated, evaluation.lastError());
+      }
     }
-    outcome.wall_time_s = secondsSince(variant_start);
-
+    outcome.wall_time_s = secondsSince(*state.started);
     // What the run and the evaluation left, as far as they got.
     try {
-      if (fs::is_regular_file(run / results_paths::run_yaml, error)) {
+      if (fs::is_regular_file(run / results_paths::run_yaml, ignored)) {
         for (const StageRecord& stage : readRunRecord(run / results_paths::run_yaml).stages) {
           outcome.stages.push_back({stage.name, stage.time_s});
         }
@@ -199,11 +248,36 @@ int runCompare(const CompareOptions& options, const HsmapCommand& hsmap, std::os
     } catch (const InputError& failure) {
       outcome.status = std::string("failed: ") + failure.what();
     }
-    if (fs::is_regular_file(run / results_paths::ortho_rgb_png, error)) {
+    if (fs::is_regular_file(run / results_paths::ortho_rgb_png, ignored)) {
       outcome.quicklook = run / results_paths::ortho_rgb_png;
     }
-    out << counter << name << ": " << outcome.status << " in " << seconds(outcome.wall_time_s) << "\n";
-    outcomes.push_back(std::move(outcome));
+    say("[" + name + "] " + outcome.status + " in " + seconds(outcome.wall_time_s));
+  };
+  runTaskGraph(tasks, options.jobs, [&](std::size_t t) {
+    try {
+      run_task(t);
+    } catch (const std::exception& failure) {  // e.g. the process could not be started
+      states[tasks[t].variant].outcome.status = std::string("failed: ") + failure.what();
+    }
+  });
+  // A variant that failed in its first step never reached the second: its
+  // time is up to the failure.
+  std::vector<VariantOutcome> outcomes;
+  for (VariantState& state : states) {
+    if (state.started && state.outcome.wall_time_s == 0.0) state.outcome.wall_time_s = secondsSince(*state.started);
+    if (!state.outcome.succeeded()) {
+      std::error_code ignored;
+      const fs::path run = dir / state.outcome.variant;
+      try {
+        if (state.outcome.stages.empty() && fs::is_regular_file(run / results_paths::run_yaml, ignored)) {
+          for (const StageRecord& stage : readRunRecord(run / results_paths::run_yaml).stages) {
+            state.outcome.stages.push_back({stage.name, stage.time_s});
+          }
+        }
+      } catch (const InputError&) {
+      }
+    }
+    outcomes.push_back(std::move(state.outcome));
   }
 
   const CompareTable table = buildCompareTable(std::move(outcomes));

@@ -1,9 +1,10 @@
 #pragma once
 // `hsmap compare SURVEY --out DIR` (docs/COMPARE.md): runs each variant into
-// DIR/<variant> with `hsmap run`, one after the other, a variant taking the
-// stages it shares with an earlier one from that one's run folder
-// (compare_plan.h, stage_sharing.h), so the front-end runs once and joint
-// starts from sequential's georef and surface; evaluates each run when the
+// DIR/<variant> with `hsmap run`, up to `jobs` runs at a time
+// (compare_schedule.h), a variant taking the stages it shares with an
+// earlier one from that one's run folder (compare_plan.h, stage_sharing.h),
+// so the front-end runs once and joint starts from sequential's georef and
+// surface as soon as they are done; evaluates each run when the
 // survey has truth/ (`hsmap evaluate`); and writes DIR/compare.csv,
 // compare.md and compare.html (compare_table.h and its writers).
 //
@@ -31,6 +32,7 @@ struct CompareOptions {
   std::vector<Variant> variants;  // in the table's order (variant_list.h)
   int threads = 0;                // handed to every run (0: every hardware thread)
   bool force = false;             // redo every stage (a shared stage still runs once)
+  int jobs = 2;                   // runs at a time (compare_schedule.h)
 };
 
 // Runs `hsmap <arguments>` and hands its output (stdout and stderr merged) to

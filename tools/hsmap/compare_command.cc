@@ -14,8 +14,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareCommandLine& line) {
   CLI::App* command = app.add_subcommand(
       "compare", "Run several variants on a survey, sharing their common stages, and tabulate them side by side");
   command->footer(
-      "Runs each variant into DIR/VARIANT with `hsmap run` (its log in DIR/VARIANT.log), the stages two "
-      "variants have in common once: joint takes frontend, georef and surface from sequential's run folder. "
+      "Runs each variant into DIR/VARIANT with `hsmap run` (its log in DIR/VARIANT.log), --jobs at a time, the "
+      "stages two variants have in common once: joint takes frontend, georef and surface from sequential's "
+      "run folder as soon as they are done. "
       "Evaluates each run when the survey has truth/ (`hsmap evaluate`), then writes DIR/compare.csv, "
       "DIR/compare.md and DIR/compare.html (a self-contained page): every metric x variant with the best of "
       "each row marked, the ortho-images' quick-looks side by side, the stage times per variant and the "
@@ -31,6 +32,10 @@ CLI::App* addCompareCommand(CLI::App& app, CompareCommandLine& line) {
   command->add_option("--threads", options.threads,
                       "Threads of each run (handed to `hsmap run --threads`); 0: every hardware thread")
       ->default_val(options.threads);
+  command->add_option("--jobs", options.jobs,
+                      "Runs at a time: variants that do not wait for each other's stages run side by side "
+                      "(one run leaves about half of a 2-core machine idle, reading and writing files)")
+      ->default_val(options.jobs);
   command->add_flag("--force", options.force,
                     "Redo every stage of every run (a shared stage still runs once, in the first variant)");
   return command;

@@ -1,5 +1,5 @@
 #pragma once
-// `hsmap compare SURVEY --out DIR [--variants LIST] [--threads N] [--force]`:
+// `hsmap compare SURVEY --out DIR [--variants LIST] [--jobs N] [--threads N] [--force]`:
 // the command line of the compare (pipelines/compare/compare_runner.h,
 // docs/COMPARE.md). This file only parses; the compare runs the variants as
 // child processes of this executable (child_process.h).
