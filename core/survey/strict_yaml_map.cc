@@ -249,6 +249,23 @@ StrictYamlMap StrictYamlMap::map(const std::string& key,
   return StrictYamlMap(file_, entry.value, keyPath(key), entry.line, std::move(allowed_keys));
 }
 
+std::vector<StrictYamlMap> StrictYamlMap::maps(const std::string& key,
+                                               const std::vector<std::string>& allowed_keys) const {
+  const Entry& entry = require(key);
+  if (!entry.value.IsSequence()) {
+    fail(key, "expected a list of maps with keys (" + joinKeys(allowed_keys) + "), got " +
+                  describeYamlNode(entry.value));
+  }
+  std::vector<StrictYamlMap> elements;
+  elements.reserve(entry.value.size());
+  for (std::size_t i = 0; i < entry.value.size(); ++i) {
+    const YAML::Node element = entry.value[i];
+    elements.emplace_back(file_, element, keyPath(key) + "[" + std::to_string(i) + "]",
+                          lineOfNode(element, entry.line), allowed_keys);
+  }
+  return elements;
+}
+
 double StrictYamlMap::numberInRange(const std::string& key, double low, double high) const {
   const double value = number(key);
   if (value < low || value > high) {

@@ -55,6 +55,12 @@ class StrictYamlMap {
   // A list of exactly `count` numbers.
   std::vector<double> numbers(const std::string& key, std::size_t count) const;
   StrictYamlMap map(const std::string& key, std::vector<std::string> allowed_keys) const;
+  // A list of maps (e.g. `lights.lamps`), each read strictly with
+  // `allowed_keys`. Element i is named "<key>[i]" in errors (dotted keys
+  // below it: "lights.lamps[1].axis") and reported at its own line. The list
+  // may be empty: whether that is allowed is the caller's to say.
+  std::vector<StrictYamlMap> maps(const std::string& key,
+                                  const std::vector<std::string>& allowed_keys) const;
 
   // A number in [low, high] ("expected a number in [low, high], got v"), and
   // a number in (0, high] ("expected a number > 0" / "... in (0, high]"):
