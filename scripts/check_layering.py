@@ -61,6 +61,7 @@ PUBLIC_HEADERS = {
                     "extrinsic_from_tie_points.h", "run_tie_points.h", "strip_tie_points.h"},
     "joint": {"joint_problem.h", "joint_solution.h", "joint_spline.h"},
     "evaluate": {"evaluate_run.h"},
+    "report": {"run_report.h"},
     "simulate": {"simulate_survey.h", "simulation_config.h", "simulation_config_yaml.h"},
     "run": {"runner.h", "run_options.h", "stage_table.h", "stage_record.h", "stage_fingerprints.h"},
     "compare": {"compare_runner.h", "variant_list.h"},
@@ -69,6 +70,7 @@ PUBLIC_HEADERS = {
 TOOL_ENTRY_POINTS = {"pipelines/run/runner.h", "pipelines/run/run_options.h",
                      "pipelines/simulate/simulate_survey.h", "pipelines/simulate/simulation_config.h",
                      "pipelines/simulate/simulation_config_yaml.h", "pipelines/evaluate/evaluate_run.h",
+                     "pipelines/report/run_report.h",
                      "pipelines/sample_survey.h", "pipelines/compare/compare_runner.h",
                      "pipelines/compare/variant_list.h"}
 STAGE_FILE = re.compile(r"^pipelines/run/(\w+)_stage\.(h|cc)$")

@@ -22,6 +22,7 @@
 #include "core/util/thread_budget.h"
 #include "pipelines/run/published_calibration.h"
 #include "pipelines/run/stage_fingerprints.h"
+#include "pipelines/report/run_report.h"
 #include "pipelines/run/stage_record.h"
 #include "pipelines/run/stage_table.h"
 
@@ -93,6 +94,18 @@ void publish(const fs::path& run, const StageDefinition& stage, Variant variant)
     } else {
       publishFile(run / owned, run / contract);
     }
+  }
+}
+
+// The report last, from the run folder as the stages left it (also after a
+// stage failed: it shows what finished). It is not a product of a stage: a
+// report that cannot be written is said, and the run's files stay as they are.
+void reportRun(const fs::path& run, std::ostream& out, std::ostream& err) {
+  try {
+    const RunReport report = writeRunReport(run);
+    out << "report: " << report.path.string() << "\n";
+  } catch (const std::exception& failure) {
+    err << "warning: the run's report was not written (the run's files are complete): " << failure.what() << "\n";
   }
 }
 
@@ -255,6 +268,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
       throw;
     } catch (const std::exception& failure) {
       err << "error: stage " << stage.name << " failed: " << failure.what() << "\n";
+      reportRun(run, out, err);
       return 1;
     }
     StageRecordFile done;
@@ -317,6 +331,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   }
   out << "total " << secondsText(record.total_time_s) << ", peak memory " << megabytesText(record.peak_rss_mb)
       << "; the run is in " << run.string() << " (run.yaml written)\n";
+  reportRun(run, out, err);
   return 0;
 }
 

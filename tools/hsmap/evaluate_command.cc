@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "pipelines/evaluate/evaluate_run.h"
+#include "pipelines/report/run_report.h"
 
 namespace hsmap {
 
@@ -21,7 +22,8 @@ CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& options) {
       "cross-track spread that tells when positions alone align poorly), the ortho-image metrics "
       "when it has RUN/hyperspectral/ortho.hdr (against SURVEY/truth/reflectance.hdr), timings, "
       "peak memory, and the INS floor (what the INS alone allows for geo-referencing). Every "
-      "metric is defined in docs/EVALUATE.md.\n"
+      "metric is defined in docs/EVALUATE.md. When the run has a report (RUN/report/index.html), it is "
+      "written again with the metrics and the ortho displacement field.\n"
       "Exit status: 0 on success; 2 when an input is missing, malformed or does not match the "
       "others, with one line naming the file, the line or key, and what was expected; 1 on "
       "other failures.");
@@ -39,6 +41,13 @@ int runEvaluateCommand(const EvaluateOptions& options, std::ostream& out) {
   out << "wrote " << report.metrics_path.string();
   if (!report.ortho_patches_path.empty()) out << " and " << report.ortho_patches_path.string();
   out << "\n";
+  // A run's report shows the metrics once they exist: the one `hsmap run`
+  // wrote is written again with them (a run without a report gets none).
+  std::error_code error;
+  if (std::filesystem::is_regular_file(runReportPath(options.run), error)) {
+    const RunReport page = writeRunReport(options.run);
+    out << "report: " << page.path.string() << " (with the metrics)\n";
+  }
   return 0;
 }
 

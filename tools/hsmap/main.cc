@@ -13,6 +13,7 @@
 #include "tools/hsmap/compare_command.h"
 #include "tools/hsmap/evaluate_command.h"
 #include "tools/hsmap/inspect_command.h"
+#include "tools/hsmap/report_command.h"
 #include "tools/hsmap/run_command.h"
 #include "tools/hsmap/sample_command.h"
 #include "tools/hsmap/simulate_command.h"
@@ -40,6 +41,8 @@ int main(int argc, char** argv) {
   CLI::App* simulate = hsmap::addSimulateCommand(app, simulate_options);
   hsmap::EvaluateOptions evaluate_options;
   CLI::App* evaluate = hsmap::addEvaluateCommand(app, evaluate_options);
+  hsmap::ReportOptions report_options;
+  CLI::App* report = hsmap::addReportCommand(app, report_options);
   hsmap::CompareCommandLine compare_options;
   CLI::App* compare = hsmap::addCompareCommand(app, compare_options);
 
@@ -54,6 +57,7 @@ int main(int argc, char** argv) {
     if (inspect->parsed()) return hsmap::runInspectCommand(inspect_options, std::cout);
     if (run->parsed()) return hsmap::runRunCommand(run_options, std::cout, std::cerr);
     if (evaluate->parsed()) return hsmap::runEvaluateCommand(evaluate_options, std::cout);
+    if (report->parsed()) return hsmap::runReportCommand(report_options, std::cout, std::cerr);
     if (compare->parsed()) return hsmap::runCompareCommand(compare_options, std::cout, std::cerr);
     if (sample->parsed()) return hsmap::runSampleCommand(sample_options, std::cout, std::cerr);
     if (simulate->parsed()) {
