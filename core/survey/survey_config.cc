@@ -30,7 +30,8 @@ void rememberFileKey(SurveyConfig& config, const StrictYamlMap& map, const std::
 }
 
 RgbConfig parseRgb(const StrictYamlMap& root, SurveyConfig& survey) {
-  const StrictYamlMap rgb = root.map("rgb", {"frames", "video", "start_time", "fps", "camera"});
+  const StrictYamlMap rgb =
+      root.map("rgb", {"frames", "video", "start_time", "fps", "camera", "camera_sigma"});
   RgbConfig config;
   if (rgb.has("frames") && rgb.has("video")) {
     rgb.fail("video", "give either 'frames' (a frames.csv) or 'video', not both");
@@ -53,18 +54,21 @@ RgbConfig parseRgb(const StrictYamlMap& root, SurveyConfig& survey) {
     rememberFileKey(survey, rgb, "frames");
   }
   config.camera = readPinholeRadtanCamera(rgb, "camera");
+  if (rgb.has("camera_sigma")) config.camera_sigma = readPinholeRadtanSigma(rgb, "camera_sigma");
   return config;
 }
 
 UhiConfig parseUhi(const StrictYamlMap& root, SurveyConfig& survey) {
   const StrictYamlMap uhi = root.map(
-      "uhi", {"cube", "lines", "camera", "extrinsic", "time_offset_s", "time_offset_sigma_s"});
+      "uhi", {"cube", "lines", "camera", "camera_sigma", "extrinsic", "time_offset_s",
+              "time_offset_sigma_s"});
   UhiConfig config;
   config.cube = uhi.text("cube");
   config.lines = uhi.text("lines");
   rememberFileKey(survey, uhi, "cube");
   rememberFileKey(survey, uhi, "lines");
   config.camera = readPushbroomCamera(uhi, "camera");
+  if (uhi.has("camera_sigma")) config.camera_sigma = readPushbroomSigma(uhi, "camera_sigma");
   const StrictYamlMap extrinsic = uhi.map(
       "extrinsic", {"rotation_wxyz", "translation_m", "sigma_rotation_deg", "sigma_translation_m"});
   config.T_C_U = readRigidTransform(extrinsic);
@@ -111,7 +115,7 @@ SurveyConfig parseSurveyConfig(const std::filesystem::path& path, const YAML::No
                          SurveyConfig::kFormat + "'");
   }
   const StrictYamlMap root(path, document, "", 1,
-                           {"format", "name", "rgb", "uhi", "ins", "origin"});
+                           {"format", "name", "rgb", "uhi", "ins", "origin", "lights"});
   const std::string format = root.text("format");
   if (format != SurveyConfig::kFormat) {
     root.fail("format",
@@ -129,6 +133,11 @@ SurveyConfig parseSurveyConfig(const std::filesystem::path& path, const YAML::No
     value.lon_deg = origin.numberInRange("lon", -180.0, 180.0);
     value.depth_m = origin.numberInRange("depth", kMinDepthM, kMaxDepthM);
     config.origin = value;
+  }
+  if (root.has("lights")) {
+    const StrictYamlMap lights = root.map("lights", {"response", "lamps"});
+    config.lights = readLightsConfig(lights);
+    rememberFileKey(config, lights, "response");
   }
   return config;
 }
@@ -159,6 +168,10 @@ std::string emitSurveyConfig(const SurveyConfig& config) {
   }
   out << YAML::Key << "camera" << YAML::Value;
   emitPinholeRadtanCamera(out, config.rgb.camera);
+  if (config.rgb.camera_sigma) {
+    out << YAML::Key << "camera_sigma" << YAML::Value;
+    emitPinholeRadtanSigma(out, *config.rgb.camera_sigma);
+  }
   out << YAML::EndMap;
 
   const UhiConfig& uhi = config.uhi;
@@ -167,6 +180,10 @@ std::string emitSurveyConfig(const SurveyConfig& config) {
   emitPath(out, "lines", uhi.lines);
   out << YAML::Key << "camera" << YAML::Value;
   emitPushbroomCamera(out, uhi.camera);
+  if (uhi.camera_sigma) {
+    out << YAML::Key << "camera_sigma" << YAML::Value;
+    emitPushbroomSigma(out, *uhi.camera_sigma);
+  }
   out << YAML::Key << "extrinsic" << YAML::Value << YAML::BeginMap;
   emitRigidTransformKeys(out, uhi.T_C_U);
   emitNumberKey(out, "sigma_rotation_deg", uhi.sigma_rotation_deg);
@@ -195,6 +212,10 @@ std::string emitSurveyConfig(const SurveyConfig& config) {
     emitNumberKey(out, "lon", config.origin->lon_deg);
     emitNumberKey(out, "depth", config.origin->depth_m);
     out << YAML::EndMap;
+  }
+  if (config.lights) {
+    out << YAML::Key << "lights" << YAML::Value;
+    emitLightsConfig(out, *config.lights);
   }
   out << YAML::EndMap;
   if (!out.good()) throw std::logic_error("writeSurveyConfig: YAML emitter: " + out.GetLastError());

@@ -17,6 +17,9 @@
 //       fx, fy: <px>                         required, in (0, 1e6]
 //       cx, cy: <px>                         required, in [-1e6, 1e6]
 //       distortion: [k1, k2, p1, p2, k3]     optional, 5 numbers in [-1000, 1000]; default zeros
+//     camera_sigma:                          optional: 1-sigma of rgb.camera (camera_sigma.h)
+//       fx, fy, cx, cy: <px>                 optional, in [0, 1e6]; default 0 (held fixed)
+//       distortion: [5 numbers]              optional, exactly 5, each in [0, 1000]; default zeros
 //   uhi:
 //     cube: <path to the ENVI .hdr>          required
 //     lines: <path>                          required
@@ -26,6 +29,9 @@
 //       f: <px>                              required, in (0, 1e6]
 //       cx: <px>                             required, in [-1e6, 1e6]
 //       distortion: [k1, k2]                 optional, 2 numbers in [-1000, 1000]; default zeros
+//     camera_sigma:                          optional: 1-sigma of uhi.camera (camera_sigma.h)
+//       f, cx: <px>                          optional, in [0, 1e6]; default 0 (held fixed)
+//       distortion: [2 numbers]              optional, exactly 2, each in [0, 1000]; default zeros
 //     extrinsic:                             required (T_C_U, the CAD guess)
 //       rotation_wxyz: [w, x, y, z]          required (see quaternions below)
 //       translation_m: [x, y, z]             required, each in [-100, 100]
@@ -45,6 +51,15 @@
 //                                            lat in [-90, 90], lon in [-180, 180],
 //                                            depth in [-10000, 12000] (m, h = -depth).
 //                                            Absent: W's origin is the first INS fix.
+//   lights:                                  optional: the lamps (lights_config.h)
+//     response: <path>                       required in the block: band,dn (lamp_response_csv.h)
+//     lamps:                                 required in the block: a non-empty list of
+//       - position_m: [x, y, z]                lamp centre in C, each in [-100, 100] m
+//         axis: [x, y, z]                      beam axis in C, unit vector (rule as quaternions)
+//
+// The camera sigmas are read and written but this version of hsmap holds the
+// intrinsics fixed (loadSurvey warns when one is > 0). The lights are read
+// and validated for the reflectance stage.
 //
 // The sigma defaults are those of a typical survey-grade INS and of a
 // CAD-drawing extrinsic (docs/SURVEY_FORMAT.md's example values): loose enough not to
@@ -71,6 +86,8 @@
 
 #include "core/geometry/camera_parameters.h"
 #include "core/geometry/geodetic_point.h"
+#include "core/survey/camera_sigma.h"
+#include "core/survey/lights_config.h"
 
 namespace hsmap {
 
@@ -90,12 +107,15 @@ struct RgbConfig {
   std::filesystem::path frames;         // frames.csv; empty when `video` is set
   std::optional<RgbVideoConfig> video;  // set instead of `frames`
   PinholeRadtanParameters camera;
+  // `camera_sigma`: absent when survey.yaml has none (every intrinsic fixed).
+  std::optional<PinholeRadtanSigma> camera_sigma;
 };
 
 struct UhiConfig {
   std::filesystem::path cube;   // ENVI header (.hdr)
   std::filesystem::path lines;  // lines.csv
   PushbroomParameters camera;
+  std::optional<PushbroomSigma> camera_sigma;  // absent: every intrinsic fixed
   RigidTransformConfig T_C_U;  // extrinsic guess: UHI frame U in RGB camera frame C
   double sigma_rotation_deg = 2.0;
   double sigma_translation_m = 0.05;
@@ -119,9 +139,11 @@ struct SurveyConfig {
   InsConfig ins;
   // The geodetic point at which W (local NED) is tangent; absent: the first INS fix.
   std::optional<GeodeticPoint> origin;
+  // The lamps and their response; absent: no reflectance product can be made.
+  std::optional<LightsConfig> lights;
 
   // The 1-based survey.yaml line of each key that names a file ("rgb.frames",
-  // "rgb.video", "uhi.cube", "uhi.lines", "ins.file"), so that a missing or
+  // "rgb.video", "uhi.cube", "uhi.lines", "ins.file", "lights.response"), so that a missing or
   // non-regular file is reported at the key that named it. Empty when the
   // configuration was not read from a file.
   std::map<std::string, long long> file_key_lines;
@@ -135,7 +157,9 @@ SurveyConfig parseSurveyConfigText(std::string_view raw, const std::filesystem::
 
 // Writes `config` to `path` atomically (a .partial file renamed when complete).
 // Numbers are written in shortest round-trip form; optional keys are always
-// written (with their values), so the file documents every setting.
+// written (with their values), so the file documents every setting; the
+// optional blocks `camera_sigma` and `lights` are written when present (all
+// their keys, zeros included).
 // Throws std::invalid_argument if `config` would not pass readSurveyConfig's
 // checks (e.g. both or neither of rgb.frames and rgb.video).
 void writeSurveyConfig(const std::filesystem::path& path, const SurveyConfig& config);

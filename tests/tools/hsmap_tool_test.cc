@@ -121,7 +121,7 @@ TEST_F(HsmapInspectErrorTest, UnknownYamlKey) {
       1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find("nmae")), '\n');
   expectInspectError(
       yaml.string() + ":line " + std::to_string(line) +
-      ", key nmae: unknown key; expected one of: format, name, rgb, uhi, ins, origin");
+      ", key nmae: unknown key; expected one of: format, name, rgb, uhi, ins, origin, lights");
 }
 
 TEST_F(HsmapInspectErrorTest, NanInTheIns) {

@@ -225,6 +225,69 @@ TEST_F(SurveyConfigTest, WriteThenReadIsIdentity) {
   EXPECT_EQ(testing::readText(path_), first_text);
 }
 
+// Contract v3's optional camera_sigma and lights survive a write and a read
+// bit-exactly, and a survey without them is written without them.
+TEST_F(SurveyConfigTest, WriteThenReadIsIdentityWithCameraSigmasAndLights) {
+  writeText(path_, kValidYaml);
+  SurveyConfig config = readSurveyConfig(path_);
+  config.rgb.camera_sigma = PinholeRadtanSigma{8.0 / 3.0, 8.1, 0.0, 4e-5, {0.02, 0.0, 1e-3, 0.1 / 3.0, 1000.0}};
+  config.uhi.camera_sigma = PushbroomSigma{15.000000000000002, 1e6, {0.02, 0.01}};
+  LightsConfig lights;
+  lights.response = "uhi/lamp_response.csv";
+  lights.lamps.push_back({Eigen::Vector3d(-0.3, -0.3, 0.0), Eigen::Vector3d::UnitZ()});
+  lights.lamps.push_back({Eigen::Vector3d(0.1 / 3.0, -100.0, 1e-9),
+                          Eigen::Vector3d(1.0, -2.0, 0.3).normalized()});
+  config.lights = lights;
+
+  writeSurveyConfig(path_, config);
+  const SurveyConfig back = readSurveyConfig(path_);
+  ASSERT_TRUE(back.rgb.camera_sigma.has_value());
+  EXPECT_EQ(back.rgb.camera_sigma->fx, config.rgb.camera_sigma->fx);
+  EXPECT_EQ(back.rgb.camera_sigma->fy, config.rgb.camera_sigma->fy);
+  EXPECT_EQ(back.rgb.camera_sigma->cx, config.rgb.camera_sigma->cx);
+  EXPECT_EQ(back.rgb.camera_sigma->cy, config.rgb.camera_sigma->cy);
+  EXPECT_EQ(back.rgb.camera_sigma->distortion, config.rgb.camera_sigma->distortion);
+  ASSERT_TRUE(back.uhi.camera_sigma.has_value());
+  EXPECT_EQ(back.uhi.camera_sigma->f, config.uhi.camera_sigma->f);
+  EXPECT_EQ(back.uhi.camera_sigma->cx, config.uhi.camera_sigma->cx);
+  EXPECT_EQ(back.uhi.camera_sigma->distortion, config.uhi.camera_sigma->distortion);
+  ASSERT_TRUE(back.lights.has_value());
+  EXPECT_EQ(back.lights->response, lights.response);
+  ASSERT_EQ(back.lights->lamps.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(back.lights->lamps[i].p_C, lights.lamps[i].p_C) << i;
+    EXPECT_EQ(back.lights->lamps[i].axis_C, lights.lamps[i].axis_C) << i;
+  }
+  const std::string first_text = testing::readText(path_);
+  writeSurveyConfig(path_, back);
+  EXPECT_EQ(testing::readText(path_), first_text);
+
+  config.rgb.camera_sigma.reset();
+  config.uhi.camera_sigma.reset();
+  config.lights.reset();
+  writeSurveyConfig(path_, config);
+  const std::string without = testing::readText(path_);
+  EXPECT_EQ(without.find("camera_sigma"), std::string::npos) << without;
+  EXPECT_EQ(without.find("lights"), std::string::npos) << without;
+  const SurveyConfig plain = readSurveyConfig(path_);
+  EXPECT_FALSE(plain.rgb.camera_sigma || plain.uhi.camera_sigma || plain.lights);
+}
+
+TEST_F(SurveyConfigTest, WriterRefusesInvalidLightsAndSigmas) {
+  writeText(path_, kValidYaml);
+  const SurveyConfig valid = readSurveyConfig(path_);
+  const auto other = folder_ / "other.yaml";
+  SurveyConfig config = valid;
+  config.lights = LightsConfig{"uhi/lamp_response.csv", {}};  // no lamp
+  EXPECT_THROW(writeSurveyConfig(other, config), std::invalid_argument);
+  config.lights->lamps.push_back({Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 2)});
+  EXPECT_THROW(writeSurveyConfig(other, config), std::invalid_argument);
+  config = valid;
+  config.uhi.camera_sigma = PushbroomSigma{-1.0, 0.0, {0.0, 0.0}};
+  EXPECT_THROW(writeSurveyConfig(other, config), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(other));
+}
+
 TEST_F(SurveyConfigTest, WriteThenReadVideoSourceWithoutOrigin) {
   writeVariant("  frames: rgb/frames.csv\n",
                "  video: rgb/dive.mp4\n  start_time: 1700000000.04\n  fps: 29.97\n");
@@ -256,7 +319,8 @@ TEST_F(SurveyConfigTest, WriterRefusesInvalidConfiguration) {
 TEST_F(SurveyConfigTest, UnknownTopLevelKey) {
   writeText(path_, std::string(kValidYaml) + "colour: red\n");
   expectError(
-      "line 27, key colour: unknown key; expected one of: format, name, rgb, uhi, ins, origin");
+      "line 27, key colour: unknown key; expected one of: format, name, rgb, uhi, ins, origin, "
+      "lights");
 }
 
 TEST_F(SurveyConfigTest, UnknownNestedKey) {
@@ -383,7 +447,9 @@ TEST_F(SurveyConfigTest, EmptyFileAndNonMapDocument) {
   writeText(path_, "");
   expectError("line 1: empty file; expected a YAML map starting with 'format: hsmap-survey/1'");
   writeText(path_, "- a\n- b\n");
-  expectError("line 1: expected a map with keys (format, name, rgb, uhi, ins, origin), got a list");
+  expectError(
+      "line 1: expected a map with keys (format, name, rgb, uhi, ins, origin, lights), got a "
+      "list");
 }
 
 TEST_F(SurveyConfigTest, MissingFile) {

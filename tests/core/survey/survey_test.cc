@@ -183,7 +183,7 @@ TEST_F(LoadSurveyTest, UnknownYamlKey) {
         std::string(e.what()),
         yaml.string() + ":line " + std::to_string(line) +
             ", key uhi.time_ofset_sigma_s: unknown key; expected one of: cube, lines, camera, "
-            "extrinsic, time_offset_s, time_offset_sigma_s");
+            "camera_sigma, extrinsic, time_offset_s, time_offset_sigma_s");
   }
 }
 
