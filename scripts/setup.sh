@@ -18,6 +18,7 @@ PACKAGES=(
   libtbb-dev libcli11-dev libyaml-cpp-dev zlib1g-dev
   gdal-bin  # GDAL's command-line tools: gdalinfo (tests), gdal_translate (benchmarks)
   libgtest-dev libgmock-dev libbenchmark-dev
+  snakemake  # the campaign workflow (scripts/campaign/) and its test
 )
 for flag in "$@"; do
   case "$flag" in
