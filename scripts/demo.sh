@@ -3,7 +3,8 @@
 # simulates the small `tiny` survey (with ground truth), inspects it, runs
 # the `sequential` variant on it (front-end, geo-referencing, surface,
 # hyperspectral products) and scores
-# the result against the truth with `hsmap evaluate`.
+# the result against the truth with `hsmap evaluate`, and ends by printing
+# where the run's report is (one page to open in a browser).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${BUILD_DIR:-"$here/build"}
@@ -36,3 +37,6 @@ echo "(aligned with the frames' orientations: tiny's 0.7 m track is too short an
 echo "for its positions alone to fix the roll; docs/EVALUATE.md). The hyperspectral ortho-image"
 echo "covers $(metric ortho_coverage 100 %) of the true footprint; its local distortion is"
 echo "$(metric ortho_registration_rmse_m 1000 mm) RMS (needs enough textured 0.3 m patches; tiny has few)."
+echo
+echo "Open the run's report in a browser (one self-contained page, works offline):"
+echo "report: $run/report/index.html"
