@@ -9,15 +9,19 @@
 
 namespace hsmap {
 
-ReportSpectralGrid readSpectralGrid(const std::filesystem::path& ortho_hdr, int max_blocks) {
+ReportSpectralGrid readSpectralGrid(const std::filesystem::path& ortho_hdr, long long max_blocks,
+                                    long long max_values) {
   const EnviReader reader(ortho_hdr);
   const int samples = reader.samples(), lines = reader.lines(), bands = reader.bands();
   ReportSpectralGrid grid;
   grid.image_columns = samples;
   grid.image_rows = lines;
-  grid.block_px = std::max(1, (std::max(samples, lines) + max_blocks - 1) / max_blocks);
-  grid.columns = (samples + grid.block_px - 1) / grid.block_px;
-  grid.rows = (lines + grid.block_px - 1) / grid.block_px;
+  const long long most_blocks = std::max(1LL, std::min(max_blocks, max_values / std::max(1, bands)));
+  for (grid.block_px = 1;; ++grid.block_px) {
+    grid.columns = (samples + grid.block_px - 1) / grid.block_px;
+    grid.rows = (lines + grid.block_px - 1) / grid.block_px;
+    if ((long long)grid.columns * grid.rows <= most_blocks) break;
+  }
   grid.wavelengths_nm = reader.header().wavelength;
   grid.wavelengths_nm.resize(std::size_t(bands), NAN);
   grid.value_meaning = "radiance as the UHI recorded it (the cube's digital numbers), averaged over the block";

@@ -138,7 +138,7 @@ TEST(ReadSpectralGrid, AveragesBlocksOverThePixelsWithData) {
     writer.writeLine(line1);
     writer.finish();
   }
-  const ReportSpectralGrid grid = readSpectralGrid(hdr, 2);  // blocks of 2 x 2 pixels
+  const ReportSpectralGrid grid = readSpectralGrid(hdr, 2);  // at most 2 blocks: of 2 x 2 pixels
   ASSERT_EQ(grid.block_px, 2);
   ASSERT_EQ(grid.columns, 2);
   ASSERT_EQ(grid.rows, 1);
