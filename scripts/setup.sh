@@ -19,7 +19,12 @@ PACKAGES=(
   gdal-bin  # GDAL's command-line tools: gdalinfo (tests), gdal_translate (benchmarks)
   libgtest-dev libgmock-dev libbenchmark-dev
   snakemake  # the campaign workflow (scripts/campaign/) and its test
+  chromium  # the run report's browser test (CTest report.browser, docs/REPORT.md)
 )
+# npm installs the report's plotting libraries at build time (pipelines/report/web).
+# Debian's nodejs and npm, unless a node with its own npm is already installed
+# (NodeSource's nodejs bundles npm, and Debian's npm would conflict with it).
+if ! command -v npm > /dev/null; then PACKAGES+=(nodejs npm); fi
 for flag in "$@"; do
   case "$flag" in
     --docs) PACKAGES+=(python3-numpy python3-matplotlib) ;;
