@@ -4,9 +4,11 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "core/io/envi_header.h"
 #include "core/survey/ins_jump_check.h"
+#include "core/survey/lamp_response_csv.h"
 #include "core/survey/number_text.h"
 #include "core/util/regular_file.h"
 #include "core/util/input_error.h"
@@ -115,6 +117,49 @@ void checkLineCount(const Survey& survey) {
                        "; expected one row per scan line");
 }
 
+// lights.response gives K(λ) per band: a table for another camera (or with a
+// band missing) would silently scale the reflectance of the wrong bands.
+void checkLampResponseBandCount(const Survey& survey) {
+  const auto bands = static_cast<std::size_t>(survey.cube->header().bands);
+  const std::size_t rows = survey.lamp_response_dn.size();
+  if (rows == bands) return;
+  const std::string cube_text = "the cube " + survey.cube_header_path.string() + " has " +
+                                std::to_string(bands) + " bands";
+  if (rows > bands) {
+    // Line numbers: header on line 1, band b on line b + 2.
+    throw InputError(survey.lamp_response_path,
+                     InputError::atLine(static_cast<long long>(bands) + 2),
+                     "row for band " + std::to_string(bands) + ", but " + cube_text +
+                         "; expected one row per UHI band (" + std::to_string(rows) +
+                         " rows given)");
+  }
+  throw InputError(survey.lamp_response_path, InputError::atLine(static_cast<long long>(rows) + 1),
+                   "the table ends at band " + std::to_string(rows - 1) + " (" +
+                       std::to_string(rows) + " rows), but " + cube_text +
+                       "; expected one row per UHI band");
+}
+
+// survey.yaml asks for self-calibrated intrinsics (a camera_sigma > 0) that
+// this version does not estimate: said once, where the survey's warnings are.
+std::optional<std::string> intrinsicsHeldFixedWarning(const SurveyConfig& config) {
+  std::vector<std::string> cameras;
+  if (config.rgb.camera_sigma && config.rgb.camera_sigma->asksForCalibration()) {
+    cameras.push_back("rgb");
+  }
+  if (config.uhi.camera_sigma && config.uhi.camera_sigma->asksForCalibration()) {
+    cameras.push_back("uhi");
+  }
+  if (cameras.empty()) return std::nullopt;
+  std::string sigmas, held;
+  for (std::size_t i = 0; i < cameras.size(); ++i) {
+    sigmas += (i > 0 ? " and " : "") + cameras[i] + ".camera_sigma";
+    held += (i > 0 ? " and " : "") + cameras[i] + ".camera";
+  }
+  return "survey.yaml gives " + sigmas +
+         " (self-calibrated intrinsics), but this version of hsmap holds the intrinsics fixed: " +
+         held + " used as given";
+}
+
 // Checks that [first, last] of a stream overlaps the INS span; records a
 // warning when part of it lies outside.
 void checkCoverage(Survey& survey, const std::string& stream, const std::filesystem::path& file,
@@ -168,6 +213,10 @@ void checkReferencedFiles(const Survey& survey) {
   checkReferencedFile(survey, "uhi.cube", survey.cube_header_path, "an ENVI header (.hdr)");
   checkReferencedFile(survey, "uhi.lines", survey.lines_path, "the scan-line table (line,t)");
   checkReferencedFile(survey, "ins.file", survey.ins_path, "the INS table (t,lat,lon,depth...)");
+  if (config.lights) {
+    checkReferencedFile(survey, "lights.response", survey.lamp_response_path,
+                        "the lamp response table (band,dn)");
+  }
 }
 
 TruthFolder detectTruth(const std::filesystem::path& folder) {
@@ -206,7 +255,9 @@ Survey loadSurvey(const std::filesystem::path& folder) {
   survey.cube_header_path = folder / config.uhi.cube;
   survey.lines_path = folder / config.uhi.lines;
   survey.ins_path = folder / config.ins.file;
+  if (config.lights) survey.lamp_response_path = folder / config.lights->response;
   checkReferencedFiles(survey);
+  if (auto warning = intrinsicsHeldFixedWarning(config)) survey.warnings.push_back(*warning);
 
   survey.rgb = openRgb(survey);
 
@@ -220,6 +271,10 @@ Survey loadSurvey(const std::filesystem::path& folder) {
                          "; the camera model must describe every pixel of a line");
   }
   survey.wavelengths_nm = wavelengthsInNm(header, survey.cube_header_path);
+  if (config.lights) {
+    survey.lamp_response_dn = readLampResponseCsv(survey.lamp_response_path);
+    checkLampResponseBandCount(survey);
+  }
 
   survey.line_times = readLinesCsv(survey.lines_path);
   checkLineCount(survey);

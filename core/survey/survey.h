@@ -19,6 +19,8 @@
 //      wavelength, and guessing them would mislabel the science data);
 //      wavelengths are converted to nanometres (units "Nanometers", "nm" or
 //      absent = nm; "Micrometers", "um" = x1000; anything else is an error);
+//      with `lights`: lights.response (lamp_response_csv.h) has one row per
+//      band of the cube;
 //   4. uhi/lines.csv: one row per scan line of the cube, time-ordered;
 //   5. nav/ins.csv: time-ordered fixes in physical ranges (at least one), no
 //      impossible jump between consecutive fixes; suspicious jumps are
@@ -28,6 +30,9 @@
 //      spans are an error (nothing could be geo-referenced); partial coverage
 //      is allowed and reported in `warnings` (those frames/lines lie outside
 //      the INS span and can only be extrapolated).
+// A camera_sigma with a sigma > 0 asks for self-calibrated intrinsics, which
+// this version does not do: the first of `warnings` says so (so that both
+// `hsmap inspect` and `hsmap run` print it once).
 // The optional truth/ folder (synthetic surveys) is detected and its
 // expected files listed; its readers come with the simulator.
 //
@@ -69,6 +74,10 @@ struct Survey {
   std::vector<double> wavelengths_nm;  // one per band, from the ENVI header
   std::vector<double> line_times;      // recorded time of scan line i (without d)
   InsTable ins;
+  // With survey.yaml's `lights`: the resolved lights.response and K(λ) of
+  // every band (one per band of the cube); empty paths and list without.
+  std::filesystem::path lamp_response_path;
+  std::vector<double> lamp_response_dn;
 
   // W's origin: survey.yaml's `origin`, or the first INS fix.
   GeodeticPoint origin;

@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "core/io/envi_header.h"
+#include "core/survey/number_text.h"
 #include "core/survey/rgb_frame_check.h"
 #include "core/util/median.h"
 #include "core/util/message_text.h"
@@ -28,6 +29,53 @@ void printStream(std::ostream& out, const char* label, const char* unit, const S
   for (const TimeGap& gap : s.first_gaps) {
     out << "      " << fixedDecimals(gap.t_before, 6) << " -> " << fixedDecimals(gap.t_after, 6) << " s (step "
         << fixedDecimals(gap.t_after - gap.t_before, 6) << " s, before entry " << gap.index << ")\n";
+  }
+}
+
+std::string vectorText(const Eigen::Vector3d& v, int decimals) {
+  std::string text = "[";
+  for (int i = 0; i < 3; ++i) {
+    if (i > 0) text += ", ";
+    text += fixedDecimals(v[i], decimals);
+  }
+  return text + "]";
+}
+
+template <std::size_t N>
+std::string distortionText(const std::array<double, N>& values) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i > 0) text += ", ";
+    text += formatDouble(values[i]);
+  }
+  return text + "]";
+}
+
+// The intrinsics' sigmas are read but not used yet: the line says so, next
+// to the values, and the survey's warnings say it once more.
+constexpr const char* kHeldFixed = " (intrinsics held fixed in this version)";
+
+void printRgbSigma(std::ostream& out, const PinholeRadtanSigma& sigma) {
+  out << "       camera_sigma: fx " << fixedDecimals(sigma.fx, 2) << ", fy " << fixedDecimals(sigma.fy, 2)
+      << ", cx " << fixedDecimals(sigma.cx, 2) << ", cy " << fixedDecimals(sigma.cy, 2)
+      << ", distortion " << distortionText(sigma.distortion) << kHeldFixed << "\n";
+}
+
+void printUhiSigma(std::ostream& out, const PushbroomSigma& sigma) {
+  out << "       camera_sigma: f " << fixedDecimals(sigma.f, 2) << ", cx " << fixedDecimals(sigma.cx, 2)
+      << ", distortion " << distortionText(sigma.distortion) << kHeldFixed << "\n";
+}
+
+void printLights(std::ostream& out, const SurveySummary& s) {
+  const std::size_t lamps = s.lights->lamps.size();
+  out << "  lights: " << lamps << (lamps == 1 ? " lamp" : " lamps") << "; response "
+      << s.lamp_response_path.string() << ": " << s.lamp_response_bands << " bands, DN "
+      << fixedDecimals(s.lamp_response_min_dn, 1) << " - " << fixedDecimals(s.lamp_response_max_dn, 1)
+      << "\n";
+  for (std::size_t i = 0; i < s.lights->lamps.size(); ++i) {
+    const LampConfig& lamp = s.lights->lamps[i];
+    out << "    lamp " << i << ": position " << vectorText(lamp.p_C, 3) << " m, axis "
+        << vectorText(lamp.axis_C, 3) << " (in C)\n";
   }
 }
 
@@ -63,10 +111,12 @@ SurveySummary summarizeSurvey(const Survey& survey) {
   summary.rgb_source =
       (survey.rgb.isVideo() ? "video " : "image list ") + survey.rgb.sourcePath().string();
   summary.rgb_camera = config.rgb.camera;
+  summary.rgb_camera_sigma = config.rgb.camera_sigma;
   summary.rgb = analyzeTimeStamps(survey.rgb.times());
 
   const EnviHeader& header = survey.cube->header();
   summary.uhi_camera = config.uhi.camera;
+  summary.uhi_camera_sigma = config.uhi.camera_sigma;
   summary.uhi_samples = header.samples;
   summary.uhi_lines = header.lines;
   summary.uhi_bands = header.bands;
@@ -85,6 +135,17 @@ SurveySummary summarizeSurvey(const Survey& survey) {
   for (const InsFix& fix : survey.ins.fixes) ins_times.push_back(fix.t);
   summary.ins = analyzeTimeStamps(ins_times);
 
+  summary.lights = config.lights;
+  if (config.lights) {
+    const std::vector<double>& dn = survey.lamp_response_dn;
+    summary.lamp_response_path = survey.lamp_response_path;
+    summary.lamp_response_bands = dn.size();
+    if (!dn.empty()) {
+      summary.lamp_response_min_dn = *std::min_element(dn.begin(), dn.end());
+      summary.lamp_response_max_dn = *std::max_element(dn.begin(), dn.end());
+    }
+  }
+
   summary.origin = survey.origin;
   summary.origin_from_config = survey.origin_from_config;
   summary.truth = survey.truth;
@@ -100,14 +161,17 @@ void printSurveySummary(std::ostream& out, const SurveySummary& s) {
   out << "  RGB: pinhole-radtan " << c.width << "x" << c.height << ", fx " << fixedDecimals(c.fx, 2)
       << ", fy " << fixedDecimals(c.fy, 2) << ", cx " << fixedDecimals(c.cx, 2) << ", cy " << fixedDecimals(c.cy, 2) << "; "
       << s.rgb_source << "\n";
+  if (s.rgb_camera_sigma) printRgbSigma(out, *s.rgb_camera_sigma);
   out << "  UHI: pushbroom, " << s.uhi_samples << " samples x " << s.uhi_bands << " bands, "
       << s.uhi_lines << " lines, " << s.uhi_data_type << ", " << s.uhi_interleave << ", f "
       << fixedDecimals(s.uhi_camera.f, 2) << ", cx " << fixedDecimals(s.uhi_camera.cx, 2) << "\n";
   out << "       wavelengths " << fixedDecimals(s.wavelength_min_nm, 1) << " - "
       << fixedDecimals(s.wavelength_max_nm, 1) << " nm; time offset guess " << fixedDecimals(s.uhi_time_offset_s, 6)
       << " s\n";
+  if (s.uhi_camera_sigma) printUhiSigma(out, *s.uhi_camera_sigma);
   out << "  INS: " << (s.ins_has_attitude ? "position and attitude" : "position only (no attitude)")
       << "\n";
+  if (s.lights) printLights(out, s);
   out << "streams:\n";
   printStream(out, "RGB frames", "frames", s.rgb);
   printStream(out, "UHI lines", "lines", s.uhi);

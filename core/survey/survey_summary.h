@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,10 @@ struct SurveySummary {
   PinholeRadtanParameters rgb_camera;
   StreamTiming rgb;
 
+  std::optional<PinholeRadtanSigma> rgb_camera_sigma;  // survey.yaml's rgb.camera_sigma, when given
+
   PushbroomParameters uhi_camera;
+  std::optional<PushbroomSigma> uhi_camera_sigma;
   int uhi_samples = 0;
   int uhi_lines = 0;
   int uhi_bands = 0;
@@ -60,6 +64,13 @@ struct SurveySummary {
 
   bool ins_has_attitude = false;
   StreamTiming ins;
+
+  // survey.yaml's lights, when given, with K(λ)'s band count and range.
+  std::optional<LightsConfig> lights;
+  std::filesystem::path lamp_response_path;
+  std::size_t lamp_response_bands = 0;
+  double lamp_response_min_dn = 0.0;
+  double lamp_response_max_dn = 0.0;
 
   GeodeticPoint origin;
   bool origin_from_config = false;
