@@ -1,7 +1,8 @@
 #pragma once
 // SurveySummary: what `hsmap inspect` reports about a loaded survey — its
-// sensors, the time span, rate and gaps of each stream, band wavelengths,
-// origin and ground truth — as data (for tests and reports) and as text.
+// sensors (with the camera sigmas and lamps when survey.yaml gives them), the
+// time span, rate and gaps of each stream, band wavelengths, origin and
+// ground truth — as data (for tests and reports) and as text.
 //
 // Rates and gaps: a stream's nominal step is the median of its time steps
 // (robust to the gaps themselves); a step longer than 1.5x that median is a
