@@ -137,29 +137,29 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   }
 }
 
-cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const {
+void RgbRenderer::renderLinear(const Pose& pose, std::vector<Eigen::Vector3f>& sum,
+                               bool accumulate) const {
   const int width = config_.camera.width;
   const int height = config_.camera.height;
   const int per_pixel = config_.samples_per_pixel == 4 ? 4 : 1;
   const bool quincunx = config_.samples_per_pixel == 2;
-  cv::Mat image(height, width, CV_8UC3);
   // Quincunx: the corners first, each shared by up to four pixels.
   std::vector<Eigen::Vector3f> corners;
   if (quincunx) {
     corners.resize(std::size_t(width + 1) * (height + 1));
     tbb::parallel_for(0, height + 1, [&](int v) {
       const std::size_t offset = std::size_t(v) * (width + 1);
-      shadeRays(T_W_B, T_W_C, corner_rays_C_.data() + offset, width + 1, corners.data() + offset);
+      shadeRays(pose.T_W_B, pose.T_W_C, corner_rays_C_.data() + offset, width + 1,
+                corners.data() + offset);
     });
   }
   tbb::parallel_for(0, height, [&](int v) {
     const std::size_t row_rays = std::size_t(width) * per_pixel;
     thread_local std::vector<Eigen::Vector3f> samples;
     samples.resize(row_rays);
-    shadeRays(T_W_B, T_W_C, rays_C_.data() + std::size_t(v) * row_rays, int(row_rays),
+    shadeRays(pose.T_W_B, pose.T_W_C, rays_C_.data() + std::size_t(v) * row_rays, int(row_rays),
               samples.data());
-    SensorNoise noise(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
-    auto* out = image.ptr<cv::Vec3b>(v);
+    Eigen::Vector3f* out = sum.data() + std::size_t(v) * width;
     for (int u = 0; u < width; ++u) {
       Eigen::Vector3f linear = Eigen::Vector3f::Zero();
       if (quincunx) {
@@ -170,11 +170,48 @@ cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t f
         for (int s = 0; s < per_pixel; ++s) linear += samples[std::size_t(u) * per_pixel + s];
         linear /= float(per_pixel);
       }
-      linear *= float(gain_ / M_PI);
+      if (accumulate) {
+        out[u] += linear;
+      } else {
+        out[u] = linear;
+      }
+    }
+  });
+}
+
+cv::Mat RgbRenderer::render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const {
+  const Pose pose{T_W_B, T_W_C};
+  return render(std::span<const Pose>(&pose, 1), 1.0, frame_index);
+}
+
+cv::Mat RgbRenderer::render(std::span<const Pose> subframes, double gain,
+                            std::int64_t frame_index) const {
+  if (subframes.empty() || !(gain > 0.0)) {
+    throw std::invalid_argument("RgbRenderer::render: expected at least one sub-frame and a gain > 0");
+  }
+  const int width = config_.camera.width;
+  const int height = config_.camera.height;
+  std::vector<Eigen::Vector3f> linear_image(std::size_t(width) * height);
+  for (std::size_t i = 0; i < subframes.size(); ++i) renderLinear(subframes[i], linear_image, i > 0);
+  // One sub-frame: no division, so that the frame is the instantaneous render bit for bit.
+  const float subframe_weight = 1.0f / float(subframes.size());
+  const bool average = subframes.size() > 1;
+  // gain_ / pi * 1.0 is gain_ / pi exactly: a gain of 1 changes no bit.
+  const float scale = float(gain_ / M_PI * gain);
+  const double read_noise_dn = config_.read_noise_dn * gain;
+  cv::Mat image(height, width, CV_8UC3);
+  tbb::parallel_for(0, height, [&](int v) {
+    SensorNoise noise(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
+    const Eigen::Vector3f* row = linear_image.data() + std::size_t(v) * width;
+    auto* out = image.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < width; ++u) {
+      Eigen::Vector3f linear = row[u];
+      if (average) linear *= subframe_weight;
+      linear *= scale;
       for (int k = 0; k < 3; ++k) {
         const double dn = linear[k];
-        const double sigma = std::sqrt(config_.read_noise_dn * config_.read_noise_dn +
-                                       std::max(dn, 0.0) / config_.electrons_per_dn);
+        const double sigma = std::sqrt(read_noise_dn * read_noise_dn +
+                                       gain * std::max(dn, 0.0) / config_.electrons_per_dn);
         const double noisy = dn + sigma * noise.normal();
         out[u][2 - k] = static_cast<std::uint8_t>(std::clamp(std::lround(noisy), 0L, 255L));
       }

@@ -10,14 +10,23 @@
 //   4  a rotated 4-point grid inside the pixel, equal weights. A ray that hits the
 // seabed is shaded with the lamps, the water and the endmember mixture of the
 // material field (underwater_optics.h, rgb_radiance_table.h); a ray that
-// misses sees black water. The linear value is scaled by a fixed exposure (a
-// flat surface of `exposure_reflectance` on the axis at the nominal altitude
-// reaches 250 DN), given shot and read noise, rounded and clipped to 8 bits.
-// The image is linear (no gamma) and in OpenCV's BGR order.
+// misses sees black water.
+//
+// Exposure: a frame is the average of its sub-frames (rgb_motion_blur.h; one
+// for an instantaneous exposure), each rendered from its own camera and body
+// pose. The linear value is scaled by a fixed exposure (a flat surface of
+// `exposure_reflectance` on the axis at the nominal altitude reaches 250 DN)
+// times the frame's gain (automatic gain; 1 for the fixed exposure), given
+// shot and read noise, rounded and clipped to 8 bits. A gain G amplifies the
+// sensor's noise with the signal: read noise sigma_r becomes G sigma_r and the
+// shot-noise variance G DN / electrons_per_dn (fewer electrons per DN). The
+// image is linear (no gamma) and in OpenCV's BGR order.
 //
 // Rows are rendered in parallel (TBB); each row's noise has its own seed, so
-// the bytes do not depend on scheduling.
+// the bytes do not depend on scheduling. With one sub-frame and a gain of 1
+// the frame is bit for bit the instantaneous render.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,8 +43,18 @@ class RgbRenderer {
  public:
   RgbRenderer(const RenderContext& context, const SimulatedRgbConfig& config, std::uint64_t seed);
 
+  // Where the camera is at one instant of the exposure: T_W_C sees, the body
+  // pose T_W_B places the lamps.
+  struct Pose {
+    SE3d T_W_B;
+    SE3d T_W_C;
+  };
+
   // Frame `frame_index` seen from T_W_C (the body pose T_W_B lights the scene).
   cv::Mat render(const SE3d& T_W_B, const SE3d& T_W_C, std::int64_t frame_index) const;
+  // Frame `frame_index` exposed over `subframes` (equal weights, at least
+  // one) with the linear gain `gain` (> 0) on top of the fixed exposure.
+  cv::Mat render(std::span<const Pose> subframes, double gain, std::int64_t frame_index) const;
 
  private:
   RenderContext context_;
@@ -49,6 +68,9 @@ class RgbRenderer {
   // Casts and shades `count` rays of `rays_C` from T_W_C into `out`.
   void shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C, int count,
                  Eigen::Vector3f* out) const;
+  // The anti-aliased linear image (row-major, before exposure) seen from
+  // `pose`, added to `sum` when `accumulate`, else written to it.
+  void renderLinear(const Pose& pose, std::vector<Eigen::Vector3f>& sum, bool accumulate) const;
 
   // Unit ray directions in C, row-major: samples_per_pixel per pixel (1, 4),
   // or the pixel centres (2) followed by corner_rays_C_.

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/geometry/local_ned_frame.h"
+#include "core/geometry/pinhole_radtan_camera.h"
 #include "core/geometry/so3.h"
 #include "core/io/envi_writer.h"
 #include "core/io/ply_io.h"
@@ -22,6 +23,7 @@
 #include "pipelines/simulate/motion/ins_synthesis.h"
 #include "pipelines/simulate/motion/vehicle_trajectory.h"
 #include "pipelines/simulate/reflectance_ortho.h"
+#include "pipelines/simulate/rgb_motion_blur.h"
 #include "pipelines/simulate/rgb_renderer.h"
 #include "pipelines/simulate/scene/seabed_scene.h"
 #include "pipelines/simulate/sensor_noise.h"
@@ -277,6 +279,23 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   auto rgb_stage = timings.stage("rgb frames");
   {
     const RgbRenderer renderer(context, config.rgb, noiseSeed(config.seed, kRgb, 0));
+    const PinholeRadtanCamera rgb_camera(config.rgb.camera);
+    const double exposure_s = config.rgb.exposure_s;
+    // The camera and body poses over frame k's exposure (rgb_motion_blur.h).
+    auto exposurePoses = [&](double t) {
+      std::vector<RgbRenderer::Pose> poses;
+      int subframes = 1;
+      if (exposure_s > 0.0) {
+        const SE3d T_W_C_begin = trajectory.T_W_B(t - 0.5 * exposure_s) * T_B_C;
+        const SE3d T_W_C_end = trajectory.T_W_B(t + 0.5 * exposure_s) * T_B_C;
+        subframes = motionBlurSubframes(imageMotionPx(rgb_camera, caster, T_W_C_begin, T_W_C_end));
+      }
+      for (double t_sub : subframeTimes(t, exposure_s, subframes)) {
+        const SE3d T_W_B = trajectory.T_W_B(t_sub);
+        poses.push_back({T_W_B, T_W_B * T_B_C});
+      }
+      return poses;
+    };
     std::vector<double> times;
     for (std::int64_t k = 0;; ++k) {
       const double t = record_begin + k / config.rgb.rate_hz;
@@ -299,7 +318,7 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
         if (inBlackout(config.rgb.blackouts, times[k] - trajectory.startTime())) {
           images[i] = cv::Mat::zeros(config.rgb.camera.height, config.rgb.camera.width, CV_8UC3);
         } else {
-          images[i] = renderer.render(T_W_B, T_W_C, std::int64_t(k));
+          images[i] = renderer.render(exposurePoses(times[k]), 1.0, std::int64_t(k));
         }
         char name[32];
         std::snprintf(name, sizeof(name), "frame_%06zu.png", k);

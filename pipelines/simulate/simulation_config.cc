@@ -168,6 +168,9 @@ void validateSimulationConfig(const SimulationConfig& config) {
   require(config.rgb.read_noise_dn >= 0.0, "rgb.read_noise_dn", "a value >= 0");
   require(config.rgb.electrons_per_dn > 0.0, "rgb.electrons_per_dn", "a value > 0");
   require(config.rgb.exposure_reflectance > 0.0, "rgb.exposure_reflectance", "a value > 0");
+  require(std::isfinite(config.rgb.exposure_s) && config.rgb.exposure_s >= 0.0 &&
+              config.rgb.exposure_s <= 1.0 / config.rgb.rate_hz,
+          "rgb.exposure_s", "an exposure time in [0, 1 / rate_hz] s (the shutter closes before the next frame)");
   for (const RgbBlackout& blackout : config.rgb.blackouts) {
     require(std::isfinite(blackout.start_s) && blackout.start_s >= 0.0, "rgb.blackouts.start_s",
             "a time >= 0 s from the trajectory's start");

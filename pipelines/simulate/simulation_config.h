@@ -60,6 +60,9 @@ struct SimulatedRgbConfig {
                                       // nominal altitude, on the axis, is exposed to 250 DN
   std::vector<RgbBlackout> blackouts;  // video dropouts; the frames and their truth poses are
                                        // still written
+  // Motion blur: the shutter is open for exposure_s, centred on the frame's
+  // time (rgb_motion_blur.h); 0 is an instantaneous exposure (no blur).
+  double exposure_s = 0.0;  // in [0, 1 / rate_hz]
 };
 
 struct SimulatedUhiConfig {

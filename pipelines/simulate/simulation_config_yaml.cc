@@ -107,7 +107,8 @@ void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationCo
   if (!root.has("rgb")) return;
   const StrictYamlMap rgb =
       root.map("rgb", {"width", "height", "camera", "rate_hz", "samples_per_pixel",
-                       "read_noise_dn", "electrons_per_dn", "exposure_reflectance", "blackouts"});
+                       "read_noise_dn", "electrons_per_dn", "exposure_reflectance", "blackouts",
+                       "exposure_s"});
   SimulatedRgbConfig& r = config.rgb;
   if (rgb.has("camera") && (rgb.has("width") || rgb.has("height"))) {
     rgb.fail("camera", "give either camera or width and height, not both");
@@ -126,6 +127,7 @@ void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationCo
   r.electrons_per_dn = rgb.positiveNumber("electrons_per_dn", r.electrons_per_dn);
   r.exposure_reflectance = rgb.positiveNumber("exposure_reflectance", r.exposure_reflectance);
   if (rgb.has("blackouts")) r.blackouts = readBlackouts(rgb, rgb_node["blackouts"]);
+  r.exposure_s = rgb.numberInRange("exposure_s", 0.0, 1.0 / r.rate_hz, r.exposure_s);
 }
 
 void readUhi(const StrictYamlMap& root, SimulationConfig& config) {
