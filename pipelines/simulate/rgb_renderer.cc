@@ -53,6 +53,7 @@ RgbRenderer::RgbRenderer(const RenderContext& context, const SimulatedRgbConfig&
       }
     }
   }
+  vignetting_ = vignettingImage(config.vignetting, config.camera);
   // Exposure: a flat surface below the camera at the nominal altitude.
   const double altitude = context.nominal_altitude_m;
   const LampLighting lighting = context.lamps->nominalLighting(altitude);
@@ -203,10 +204,12 @@ cv::Mat RgbRenderer::render(std::span<const Pose> subframes, double gain,
   tbb::parallel_for(0, height, [&](int v) {
     SensorNoise noise(noiseSeed(seed_, 1, std::uint64_t(frame_index) * 65536 + v));
     const Eigen::Vector3f* row = linear_image.data() + std::size_t(v) * width;
+    const float* vignetting = vignetting_.empty() ? nullptr : vignetting_.data() + std::size_t(v) * width;
     auto* out = image.ptr<cv::Vec3b>(v);
     for (int u = 0; u < width; ++u) {
       Eigen::Vector3f linear = row[u];
       if (average) linear *= subframe_weight;
+      if (vignetting != nullptr) linear *= vignetting[u];
       linear *= scale;
       for (int k = 0; k < 3; ++k) {
         const double dn = linear[k];

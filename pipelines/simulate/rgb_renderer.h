@@ -14,7 +14,8 @@
 //
 // Exposure: a frame is the average of its sub-frames (rgb_motion_blur.h; one
 // for an instantaneous exposure), each rendered from its own camera and body
-// pose. The linear value is scaled by a fixed exposure (a flat surface of
+// pose. The linear value is multiplied by the vignetting (rgb_vignetting.h),
+// scaled by a fixed exposure (a flat surface of
 // `exposure_reflectance` on the axis at the nominal altitude reaches 250 DN)
 // times the frame's gain (automatic gain; 1 for the fixed exposure), given
 // shot and read noise, rounded and clipped to 8 bits. A gain G amplifies the
@@ -76,6 +77,7 @@ class RgbRenderer {
   // or the pixel centres (2) followed by corner_rays_C_.
   std::vector<Eigen::Vector3d> rays_C_;
   std::vector<Eigen::Vector3d> corner_rays_C_;  // (height + 1) x (width + 1), quincunx only
+  std::vector<float> vignetting_;                // per pixel, row-major; empty: none
 };
 
 }  // namespace hsmap

@@ -17,12 +17,15 @@
 #include "core/io/ply_io.h"
 #include "core/survey/csv_table.h"
 #include "core/survey/survey_config.h"
+#include "core/survey/lamp_response_csv.h"
 #include "core/survey/truth_files.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/simulate/motion/ins_synthesis.h"
 #include "pipelines/simulate/motion/vehicle_trajectory.h"
 #include "pipelines/simulate/reflectance_ortho.h"
+#include "pipelines/simulate/rgb_auto_gain.h"
+#include "pipelines/simulate/rgb_gain_truth.h"
 #include "pipelines/simulate/rgb_motion_blur.h"
 #include "pipelines/simulate/rgb_renderer.h"
 #include "pipelines/simulate/scene/seabed_scene.h"
@@ -302,6 +305,8 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
       if (t > record_end) break;
       times.push_back(t);
     }
+    RgbAutoGain auto_gain(config.rgb.auto_gain, config.rgb.rate_hz);
+    std::vector<double> gains_db(times.size(), 0.0);
     std::vector<FrameRow> frames(times.size());
     std::vector<TruthPose> poses(times.size());
     Progress progress("rgb frames", std::int64_t(times.size()), "frames", log);
@@ -313,12 +318,17 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
         const std::size_t k = k0 + i;
         const SE3d T_W_B = trajectory.T_W_B(times[k]);
         const SE3d T_W_C = T_W_B * T_B_C;
+        gains_db[k] = auto_gain.gainDb();
         // A dropout is not rendered: each frame's noise has its own seed, so
         // the other frames do not change.
         if (inBlackout(config.rgb.blackouts, times[k] - trajectory.startTime())) {
           images[i] = cv::Mat::zeros(config.rgb.camera.height, config.rgb.camera.width, CV_8UC3);
         } else {
-          images[i] = renderer.render(exposurePoses(times[k]), 1.0, std::int64_t(k));
+          images[i] = renderer.render(exposurePoses(times[k]), auto_gain.gain(), std::int64_t(k));
+          if (config.rgb.auto_gain.enabled) {
+            const cv::Scalar mean = cv::mean(images[i]);
+            auto_gain.meter(std::int64_t(k), (mean[0] + mean[1] + mean[2]) / 3.0);
+          }
         }
         char name[32];
         std::snprintf(name, sizeof(name), "frame_%06zu.png", k);
@@ -341,6 +351,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
     progress.finish();
     writeFramesCsv(partial / "rgb" / "frames.csv", frames);
     writeTruthPoses(partial / "truth" / "rgb_poses.csv", poses);
+    if (config.rgb.auto_gain.enabled) {
+      writeRgbGainTruth(partial / "truth" / "rgb_gain.csv", times, gains_db);
+    }
     summary.rgb_frames = int(frames.size());
     summary.rgb_width = config.rgb.camera.width;
     summary.rgb_height = config.rgb.camera.height;
@@ -351,6 +364,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   auto uhi_stage = timings.stage("uhi lines");
   const std::vector<double> wavelengths = uhiBandCentres(config.uhi);
   const UhiRenderer uhi(context, config.uhi, wavelengths, noiseSeed(config.seed, kUhi, 0));
+  // The contract's radiometry: K(lambda) of the lamps, from the renderer's
+  // own model (survey.yaml's `lights` names it).
+  writeLampResponseCsv(partial / "uhi" / "lamp_response.csv", uhi.lampResponseDn());
   const double sample_spacing_m = motion_config.altitude_m / config.uhi.camera.f;
   const WorldExtent scene_extent = turnedSceneExtent(scene_config);
   SwathFootprint footprint(scene_extent.north_min_m, scene_extent.north_max_m,
@@ -401,7 +417,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
         synthesizeIns(trajectory, noise, w_frame, trajectory.startTime(), trajectory.endTime());
     writeInsCsv(partial / "nav" / "ins.csv", ins);
     summary.ins_fixes = int(ins.fixes.size());
-    writeSurveyConfig(partial / "survey.yaml", surveyConfig(config, summary.survey_seconds));
+    SurveyConfig survey = surveyConfig(config, summary.survey_seconds);
+    survey.lights = lamps.lightsInCamera(config.calibration.T_B_C);
+    writeSurveyConfig(partial / "survey.yaml", survey);
 
     TruthCalibration calibration;
     calibration.T_C_U = toConfig(T_C_U);

@@ -171,6 +171,28 @@ void validateSimulationConfig(const SimulationConfig& config) {
   require(std::isfinite(config.rgb.exposure_s) && config.rgb.exposure_s >= 0.0 &&
               config.rgb.exposure_s <= 1.0 / config.rgb.rate_hz,
           "rgb.exposure_s", "an exposure time in [0, 1 / rate_hz] s (the shutter closes before the next frame)");
+  const RgbVignettingConfig& vignetting = config.rgb.vignetting;
+  require(vignetting.model == VignettingModel::polynomial ||
+              (vignetting.k[0] == 0.0 && vignetting.k[1] == 0.0 && vignetting.k[2] == 0.0),
+          "rgb.vignetting.k", "no coefficients unless the model is polynomial");
+  require(std::isfinite(vignetting.k[0]) && std::isfinite(vignetting.k[1]) &&
+              std::isfinite(vignetting.k[2]),
+          "rgb.vignetting.k", "finite coefficients");
+  const RgbAutoGainConfig& gain = config.rgb.auto_gain;
+  if (gain.enabled) {
+    require(gain.target_dn > 0.0 && gain.target_dn < 255.0, "rgb.auto_gain.target_dn",
+            "a brightness in (0, 255) DN");
+    require(gain.step_db > 0.0 && gain.step_db <= 20.0, "rgb.auto_gain.step_db",
+            "a step in (0, 20] dB");
+    require(gain.interval_s > 0.0 && gain.interval_s <= 3600.0, "rgb.auto_gain.interval_s",
+            "an interval in (0, 3600] s");
+    require(gain.deadband_db >= 0.0 && gain.deadband_db <= 40.0, "rgb.auto_gain.deadband_db",
+            "a dead band in [0, 40] dB");
+    require(gain.min_db >= -40.0 && gain.min_db <= gain.max_db && gain.max_db <= 40.0,
+            "rgb.auto_gain.min_db/max_db", "a range within [-40, 40] dB with min_db <= max_db");
+    require(gain.initial_db >= gain.min_db && gain.initial_db <= gain.max_db,
+            "rgb.auto_gain.initial_db", "a gain in [min_db, max_db]");
+  }
   for (const RgbBlackout& blackout : config.rgb.blackouts) {
     require(std::isfinite(blackout.start_s) && blackout.start_s >= 0.0, "rgb.blackouts.start_s",
             "a time >= 0 s from the trajectory's start");

@@ -25,6 +25,8 @@
 #include "core/geometry/geodetic_point.h"
 #include "core/survey/survey_config.h"
 #include "pipelines/simulate/motion/ins_synthesis.h"
+#include "pipelines/simulate/rgb_auto_gain.h"
+#include "pipelines/simulate/rgb_vignetting.h"
 #include "pipelines/simulate/motion/vehicle_motion_config.h"
 #include "pipelines/simulate/scene/terrain_preset.h"
 
@@ -63,6 +65,8 @@ struct SimulatedRgbConfig {
   // Motion blur: the shutter is open for exposure_s, centred on the frame's
   // time (rgb_motion_blur.h); 0 is an instantaneous exposure (no blur).
   double exposure_s = 0.0;  // in [0, 1 / rate_hz]
+  RgbVignettingConfig vignetting;  // relative illumination (rgb_vignetting.h); none by default
+  RgbAutoGainConfig auto_gain;     // automatic gain (rgb_auto_gain.h); off by default
 };
 
 struct SimulatedUhiConfig {

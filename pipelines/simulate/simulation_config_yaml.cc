@@ -103,12 +103,52 @@ std::vector<RgbBlackout> readBlackouts(const StrictYamlMap& rgb, const YAML::Nod
   return blackouts;
 }
 
+// rgb.vignetting: {model: none | cos4 | polynomial, k: [k1, k2, k3]}.
+RgbVignettingConfig readVignetting(const StrictYamlMap& rgb) {
+  const StrictYamlMap map = rgb.map("vignetting", {"model", "k"});
+  RgbVignettingConfig vignetting;
+  const std::string model = map.text("model");
+  if (model == "none") {
+    vignetting.model = VignettingModel::none;
+  } else if (model == "cos4") {
+    vignetting.model = VignettingModel::cos4;
+  } else if (model == "polynomial") {
+    vignetting.model = VignettingModel::polynomial;
+  } else {
+    map.fail("model", "expected none, cos4 or polynomial, got '" + model + "'");
+  }
+  if (vignetting.model != VignettingModel::polynomial) {
+    if (map.has("k")) map.fail("k", "only allowed with model: polynomial");
+    return vignetting;
+  }
+  const std::vector<double> k = map.numbers("k", 3);  // V = 1 + k1 r^2 + k2 r^4 + k3 r^6
+  for (int i = 0; i < 3; ++i) vignetting.k[i] = k[i];
+  return vignetting;
+}
+
+// rgb.auto_gain: present means on; every key has a default.
+RgbAutoGainConfig readAutoGain(const StrictYamlMap& rgb) {
+  const StrictYamlMap map = rgb.map("auto_gain", {"target_dn", "step_db", "interval_s", "deadband_db",
+                                                  "min_db", "max_db", "initial_db"});
+  RgbAutoGainConfig gain;
+  gain.enabled = true;
+  gain.target_dn = map.numberInRange("target_dn", 1.0, 254.0, gain.target_dn);
+  gain.step_db = map.numberInRange("step_db", 0.01, 20.0, gain.step_db);
+  gain.interval_s = map.numberInRange("interval_s", 0.001, 3600.0, gain.interval_s);
+  gain.deadband_db = map.numberInRange("deadband_db", 0.0, 40.0, gain.deadband_db);
+  gain.min_db = map.numberInRange("min_db", -40.0, 40.0, gain.min_db);
+  gain.max_db = map.numberInRange("max_db", -40.0, 40.0, gain.max_db);
+  if (gain.max_db < gain.min_db) map.fail("max_db", "expected max_db >= min_db");
+  gain.initial_db = map.numberInRange("initial_db", gain.min_db, gain.max_db, gain.initial_db);
+  return gain;
+}
+
 void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationConfig& config) {
   if (!root.has("rgb")) return;
   const StrictYamlMap rgb =
       root.map("rgb", {"width", "height", "camera", "rate_hz", "samples_per_pixel",
                        "read_noise_dn", "electrons_per_dn", "exposure_reflectance", "blackouts",
-                       "exposure_s"});
+                       "exposure_s", "vignetting", "auto_gain"});
   SimulatedRgbConfig& r = config.rgb;
   if (rgb.has("camera") && (rgb.has("width") || rgb.has("height"))) {
     rgb.fail("camera", "give either camera or width and height, not both");
@@ -128,6 +168,8 @@ void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationCo
   r.exposure_reflectance = rgb.positiveNumber("exposure_reflectance", r.exposure_reflectance);
   if (rgb.has("blackouts")) r.blackouts = readBlackouts(rgb, rgb_node["blackouts"]);
   r.exposure_s = rgb.numberInRange("exposure_s", 0.0, 1.0 / r.rate_hz, r.exposure_s);
+  if (rgb.has("vignetting")) r.vignetting = readVignetting(rgb);
+  if (rgb.has("auto_gain")) r.auto_gain = readAutoGain(rgb);
 }
 
 void readUhi(const StrictYamlMap& root, SimulationConfig& config) {

@@ -35,6 +35,41 @@ class RgbVideoSettingsYaml : public ::testing::Test {
 TEST_F(RgbVideoSettingsYaml, AbsentSettingsLeaveEveryEffectOff) {
   const SimulationConfig config = read("");
   EXPECT_EQ(config.rgb.exposure_s, 0.0);
+  EXPECT_EQ(config.rgb.vignetting.model, VignettingModel::none);
+  EXPECT_FALSE(config.rgb.auto_gain.enabled);
+}
+
+TEST_F(RgbVideoSettingsYaml, VignettingModels) {
+  EXPECT_EQ(read("rgb: {vignetting: {model: cos4}}\n").rgb.vignetting.model, VignettingModel::cos4);
+  const RgbVignettingConfig polynomial =
+      read("rgb:\n  vignetting: {model: polynomial, k: [-0.3, 0.05, 0]}\n").rgb.vignetting;
+  EXPECT_EQ(polynomial.model, VignettingModel::polynomial);
+  EXPECT_DOUBLE_EQ(polynomial.k[0], -0.3);
+  EXPECT_DOUBLE_EQ(polynomial.k[1], 0.05);
+  EXPECT_EQ(errorOf("rgb:\n  vignetting: {model: cos2}\n"),
+            file() + ":line 4, key rgb.vignetting.model: expected none, cos4 or polynomial, got 'cos2'");
+  EXPECT_EQ(errorOf("rgb:\n  vignetting: {model: cos4, k: [1, 2, 3]}\n"),
+            file() + ":line 4, key rgb.vignetting.k: only allowed with model: polynomial");
+  EXPECT_NE(errorOf("rgb:\n  vignetting: {model: polynomial}\n").find("rgb.vignetting.k"),
+            std::string::npos);
+}
+
+TEST_F(RgbVideoSettingsYaml, AutoGainIsOnWhenGivenWithDefaults) {
+  const RgbAutoGainConfig gain =
+      read("rgb:\n  auto_gain: {step_db: 0.5, interval_s: 0.4, max_db: 12}\n").rgb.auto_gain;
+  EXPECT_TRUE(gain.enabled);
+  EXPECT_DOUBLE_EQ(gain.step_db, 0.5);
+  EXPECT_DOUBLE_EQ(gain.interval_s, 0.4);
+  EXPECT_DOUBLE_EQ(gain.max_db, 12.0);
+  EXPECT_DOUBLE_EQ(gain.target_dn, RgbAutoGainConfig{}.target_dn);
+  EXPECT_TRUE(read("rgb:\n  auto_gain: {}\n").rgb.auto_gain.enabled);
+  EXPECT_EQ(errorOf("rgb:\n  auto_gain: {step: 1}\n"),
+            file() + ":line 4, key rgb.auto_gain.step: unknown key; expected one of: target_dn, "
+                     "step_db, interval_s, deadband_db, min_db, max_db, initial_db");
+  EXPECT_EQ(errorOf("rgb:\n  auto_gain: {target_dn: 300}\n"),
+            file() + ":line 4, key rgb.auto_gain.target_dn: expected a number in [1, 254], got 300");
+  EXPECT_EQ(errorOf("rgb:\n  auto_gain: {min_db: 6, max_db: 3}\n"),
+            file() + ":line 4, key rgb.auto_gain.max_db: expected max_db >= min_db");
 }
 
 TEST_F(RgbVideoSettingsYaml, MotionBlurExposure) {
