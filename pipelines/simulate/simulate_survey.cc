@@ -17,6 +17,7 @@
 #include "core/io/ply_io.h"
 #include "core/survey/csv_table.h"
 #include "core/survey/survey_config.h"
+#include "core/survey/lamp_response_csv.h"
 #include "core/survey/truth_files.h"
 #include "core/util/progress.h"
 #include "core/util/stage_timer.h"
@@ -363,6 +364,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   auto uhi_stage = timings.stage("uhi lines");
   const std::vector<double> wavelengths = uhiBandCentres(config.uhi);
   const UhiRenderer uhi(context, config.uhi, wavelengths, noiseSeed(config.seed, kUhi, 0));
+  // The contract's radiometry: K(lambda) of the lamps, from the renderer's
+  // own model (survey.yaml's `lights` names it).
+  writeLampResponseCsv(partial / "uhi" / "lamp_response.csv", uhi.lampResponseDn());
   const double sample_spacing_m = motion_config.altitude_m / config.uhi.camera.f;
   const WorldExtent scene_extent = turnedSceneExtent(scene_config);
   SwathFootprint footprint(scene_extent.north_min_m, scene_extent.north_max_m,
@@ -413,7 +417,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
         synthesizeIns(trajectory, noise, w_frame, trajectory.startTime(), trajectory.endTime());
     writeInsCsv(partial / "nav" / "ins.csv", ins);
     summary.ins_fixes = int(ins.fixes.size());
-    writeSurveyConfig(partial / "survey.yaml", surveyConfig(config, summary.survey_seconds));
+    SurveyConfig survey = surveyConfig(config, summary.survey_seconds);
+    survey.lights = lamps.lightsInCamera(config.calibration.T_B_C);
+    writeSurveyConfig(partial / "survey.yaml", survey);
 
     TruthCalibration calibration;
     calibration.T_C_U = toConfig(T_C_U);

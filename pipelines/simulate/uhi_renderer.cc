@@ -73,6 +73,16 @@ UhiRenderer::UhiRenderer(const RenderContext& context, const SimulatedUhiConfig&
   gain_ = 60000.0 / brightest;
 }
 
+std::vector<double> UhiRenderer::lampResponseDn() const {
+  std::vector<double> dn(wavelengths_nm_.size());
+  // The same float arithmetic as render(): lamp_ * float(gain_ / pi) * weight.
+  const float scale = float(gain_ / M_PI);
+  for (std::size_t b = 0; b < dn.size(); ++b) {
+    dn[b] = double(lamp_[Eigen::Index(b)] * scale * float(context_.lamps->power()));
+  }
+  return dn;
+}
+
 void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line_index,
                          UhiLineImage& out) const {
   const int samples = config_.camera.samples;

@@ -41,6 +41,13 @@ class UhiRenderer {
   void render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line_index,
               UhiLineImage& out) const;
 
+  // The data contract's K(lambda) per band (uhi/lamp_response.csv): the DN
+  // one lamp alone gives from a white Lambertian target 1 m away on its axis,
+  // facing it, with no water: the lamp's weight there is its power (beam 1,
+  // cos 1, 1/r^2 = 1), so K = gain * power * I(lambda) / pi, exactly the
+  // factor render() multiplies each lamp's light by (before noise).
+  std::vector<double> lampResponseDn() const;
+
  private:
   RenderContext context_;
   SimulatedUhiConfig config_;

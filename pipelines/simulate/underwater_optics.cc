@@ -50,6 +50,20 @@ LampRig::LampRig(const SimulatedOpticsConfig& optics, const RigidTransformConfig
   p_B_[1] = camera_B + Eigen::Vector3d(optics.lamp_forward_m, half, 0.0);
 }
 
+LightsConfig LampRig::lightsInCamera(const RigidTransformConfig& T_B_C) const {
+  // p_C = R_B_C^T (p_B - t_B_C); the axis turns with R_B_C^T.
+  const Eigen::Matrix3d R_C_B = T_B_C.rotation.toRotationMatrix().transpose();
+  LightsConfig lights;
+  lights.response = "uhi/lamp_response.csv";
+  for (int l = 0; l < LampLighting::kMaxLamps; ++l) {
+    LampConfig lamp;
+    lamp.p_C = R_C_B * (p_B_[l] - T_B_C.translation_m);
+    lamp.axis_C = (R_C_B * axis_B_).normalized();
+    lights.lamps.push_back(lamp);
+  }
+  return lights;
+}
+
 LampRig::Posed LampRig::posed(const SE3d& T_W_B) const {
   Posed lamps;
   for (int l = 0; l < LampLighting::kMaxLamps; ++l) lamps.lamp_W[l] = T_W_B * p_B_[l];

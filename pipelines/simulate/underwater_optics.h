@@ -26,6 +26,7 @@
 
 #include "core/geometry/se3.h"
 #include "core/raycast/mesh_ray_caster.h"
+#include "core/survey/lights_config.h"
 #include "core/survey/survey_config.h"
 #include "pipelines/simulate/simulation_config.h"
 
@@ -57,6 +58,11 @@ class LampRig {
   const std::array<Eigen::Vector3d, LampLighting::kMaxLamps>& lampPositions_B() const {
     return p_B_;
   }
+  const Eigen::Vector3d& axis_B() const { return axis_B_; }
+  double power() const { return power_; }
+  // The lamps as survey.yaml's `lights.lamps` states them (the data
+  // contract): centres and beam axes in the RGB camera frame C.
+  LightsConfig lightsInCamera(const RigidTransformConfig& T_B_C) const;
   // Lighting of the surface point p_W with unit normal n_W (facing the viewer)
   // when the body is at T_W_B. With `shadow_caster`, lamps hidden by the scene
   // contribute nothing.
