@@ -1,38 +1,17 @@
 #include "core/io/image_header.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstdint>
 #include <string_view>
 
+#include "core/io/file_bytes.h"
 #include "core/util/message_text.h"
 #include "core/util/regular_file.h"
 
 namespace hsmap {
 namespace {
-
-// Reads up to `size` bytes at `offset`; returns how many were read.
-std::size_t readAt(int fd, std::uint64_t offset, unsigned char* out, std::size_t size) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t got = ::pread(fd, out + done, size - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) break;
-    done += static_cast<std::size_t>(got);
-  }
-  return done;
-}
-
-std::uint32_t bigEndian32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
-         std::uint32_t{p[3]};
-}
-std::uint32_t bigEndian16(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 8) | std::uint32_t{p[1]};
-}
 
 std::optional<ImageHeader> fail(std::string* why, std::string reason) {
   if (why) *why = std::move(reason);
@@ -63,7 +42,7 @@ std::optional<ImageHeader> jpegHeader(int fd, std::uint64_t file_size, std::stri
   // Each segment is at least 4 bytes, so this bounds the walk on any file.
   while (at + 4 <= file_size) {
     std::array<unsigned char, 9> segment{};
-    if (readAt(fd, at, segment.data(), 4) < 4) break;
+    if (readBytesAt(fd, at, segment.data(), 4) < 4) break;
     if (segment[0] != 0xFF) return fail(why, "a damaged JPEG image (no marker at byte " + std::to_string(at) + ")");
     const unsigned char marker = segment[1];
     if (marker == 0xFF) {  // fill byte before a marker
@@ -74,7 +53,7 @@ std::optional<ImageHeader> jpegHeader(int fd, std::uint64_t file_size, std::stri
     const std::uint32_t length = bigEndian16(segment.data() + 2);
     if (length < 2) return fail(why, "a damaged JPEG image (segment length " + std::to_string(length) + ")");
     if (isStartOfFrame(marker)) {
-      if (length < 7 || readAt(fd, at + 4, segment.data() + 4, 5) < 5) break;
+      if (length < 7 || readBytesAt(fd, at + 4, segment.data() + 4, 5) < 5) break;
       const std::uint32_t height = bigEndian16(segment.data() + 5);
       const std::uint32_t width = bigEndian16(segment.data() + 7);
       if (width == 0 || height == 0) {
@@ -94,7 +73,7 @@ std::optional<ImageHeader> readImageHeader(const std::filesystem::path& file, st
   const RegularFile input(file);
   if (input.size() == 0) return fail(why, "an empty file");
   std::array<unsigned char, 24> head{};
-  const std::size_t size = readAt(input.fd(), 0, head.data(), head.size());
+  const std::size_t size = readBytesAt(input.fd(), 0, head.data(), head.size());
   static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (size >= 8 && std::equal(kPng, kPng + 8, head.begin())) return pngHeader(head.data(), size, why);
   if (size >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) {

@@ -1,34 +1,17 @@
 #include "core/io/image_integrity.h"
 
-#include <unistd.h>
 #include <zlib.h>
 
 #include <array>
-#include <cerrno>
 #include <cstdint>
 #include <string_view>
 #include <vector>
 
+#include "core/io/file_bytes.h"
 #include "core/util/regular_file.h"
 
 namespace hsmap {
 namespace {
-
-std::size_t readAt(int fd, std::uint64_t offset, unsigned char* out, std::size_t size) {
-  std::size_t done = 0;
-  while (done < size) {
-    const ssize_t got = ::pread(fd, out + done, size - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) break;
-    done += static_cast<std::size_t>(got);
-  }
-  return done;
-}
-
-std::uint32_t bigEndian32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
-         std::uint32_t{p[3]};
-}
 
 // A chunk type as printed: four ASCII letters, or its bytes in hex.
 std::string chunkName(const unsigned char* type) {
@@ -51,7 +34,7 @@ std::optional<std::string> pngDamage(int fd, std::uint64_t file_size) {
   while (true) {
     std::array<unsigned char, 8> head{};
     if (at == file_size) return "truncated: the file ends at byte " + std::to_string(file_size) + " before the IEND chunk";
-    if (readAt(fd, at, head.data(), 8) < 8) {
+    if (readBytesAt(fd, at, head.data(), 8) < 8) {
       return "truncated: the file ends at byte " + std::to_string(file_size) + ", inside a chunk header at byte " +
              std::to_string(at);
     }
@@ -66,7 +49,7 @@ std::optional<std::string> pngDamage(int fd, std::uint64_t file_size) {
              " chunk that starts at byte " + std::to_string(at);
     }
     data.resize(std::size_t(length) + 4);
-    if (readAt(fd, at + 8, data.data(), data.size()) < data.size()) {
+    if (readBytesAt(fd, at + 8, data.data(), data.size()) < data.size()) {
       return "cannot read the " + name + " chunk at byte " + std::to_string(at);
     }
     uLong crc = crc32(0L, Z_NULL, 0);
@@ -85,7 +68,7 @@ std::optional<std::string> jpegDamage(int fd, std::uint64_t file_size) {
   constexpr std::size_t kTail = 4096;
   const std::uint64_t start = file_size > kTail ? file_size - kTail : 0;
   std::vector<unsigned char> tail(std::size_t(file_size - start));
-  if (readAt(fd, start, tail.data(), tail.size()) < tail.size()) return "cannot read the file's end";
+  if (readBytesAt(fd, start, tail.data(), tail.size()) < tail.size()) return "cannot read the file's end";
   std::size_t end = tail.size();
   while (end > 0 && tail[end - 1] == 0x00) --end;
   if (end >= 2 && tail[end - 2] == 0xFF && tail[end - 1] == 0xD9) return std::nullopt;
@@ -99,7 +82,7 @@ std::optional<std::string> findImageDamage(const std::filesystem::path& file) {
   const RegularFile input(file);
   if (input.size() == 0) return "an empty file";
   std::array<unsigned char, 8> head{};
-  const std::size_t size = readAt(input.fd(), 0, head.data(), head.size());
+  const std::size_t size = readBytesAt(input.fd(), 0, head.data(), head.size());
   static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   if (size == 8 && std::equal(kPng, kPng + 8, head.begin())) return pngDamage(input.fd(), input.size());
   if (size >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return jpegDamage(input.fd(), input.size());
