@@ -32,6 +32,9 @@ struct SimulationSummary {
   int rgb_frames = 0;
   int rgb_width = 0;
   int rgb_height = 0;
+  std::string rgb_format;        // png, jpeg or h264 (rgb.encoding)
+  std::uintmax_t rgb_bytes = 0;  // of the frame files or the video
+  double rgb_rate_hz = 0.0;
   int uhi_lines = 0;
   int uhi_samples = 0;
   int uhi_bands = 0;

@@ -193,6 +193,11 @@ void validateSimulationConfig(const SimulationConfig& config) {
     require(gain.initial_db >= gain.min_db && gain.initial_db <= gain.max_db,
             "rgb.auto_gain.initial_db", "a gain in [min_db, max_db]");
   }
+  require(config.rgb.encoding.jpeg_quality >= 1 && config.rgb.encoding.jpeg_quality <= 100,
+          "rgb.encoding.jpeg_quality", "a quality in [1, 100]");
+  require(config.rgb.encoding.format != RgbFrameFormat::h264 ||
+              (config.rgb.camera.width % 2 == 0 && config.rgb.camera.height % 2 == 0),
+          "rgb.encoding.format", "an image of even width and height for h264 (4:2:0 chroma)");
   for (const RgbBlackout& blackout : config.rgb.blackouts) {
     require(std::isfinite(blackout.start_s) && blackout.start_s >= 0.0, "rgb.blackouts.start_s",
             "a time >= 0 s from the trajectory's start");

@@ -26,6 +26,7 @@
 #include "core/survey/survey_config.h"
 #include "pipelines/simulate/motion/ins_synthesis.h"
 #include "pipelines/simulate/rgb_auto_gain.h"
+#include "pipelines/simulate/rgb_frame_writer.h"
 #include "pipelines/simulate/rgb_vignetting.h"
 #include "pipelines/simulate/motion/vehicle_motion_config.h"
 #include "pipelines/simulate/scene/terrain_preset.h"
@@ -67,6 +68,8 @@ struct SimulatedRgbConfig {
   double exposure_s = 0.0;  // in [0, 1 / rate_hz]
   RgbVignettingConfig vignetting;  // relative illumination (rgb_vignetting.h); none by default
   RgbAutoGainConfig auto_gain;     // automatic gain (rgb_auto_gain.h); off by default
+  RgbEncodingConfig encoding;      // png frames (default), jpeg frames or an h264 video
+                                   // (rgb_frame_writer.h)
 };
 
 struct SimulatedUhiConfig {

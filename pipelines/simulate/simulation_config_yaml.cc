@@ -143,12 +143,33 @@ RgbAutoGainConfig readAutoGain(const StrictYamlMap& rgb) {
   return gain;
 }
 
+// rgb.encoding: {format: png | jpeg | h264, jpeg_quality: 1..100}.
+RgbEncodingConfig readEncoding(const StrictYamlMap& rgb) {
+  const StrictYamlMap map = rgb.map("encoding", {"format", "jpeg_quality"});
+  RgbEncodingConfig encoding;
+  const std::string format = map.text("format");
+  if (format == "png") {
+    encoding.format = RgbFrameFormat::png;
+  } else if (format == "jpeg") {
+    encoding.format = RgbFrameFormat::jpeg;
+  } else if (format == "h264") {
+    encoding.format = RgbFrameFormat::h264;
+  } else {
+    map.fail("format", "expected png, jpeg or h264, got '" + format + "'");
+  }
+  if (map.has("jpeg_quality")) {
+    if (encoding.format != RgbFrameFormat::jpeg) map.fail("jpeg_quality", "only allowed with format: jpeg");
+    encoding.jpeg_quality = map.positiveIntegerUpTo("jpeg_quality", 100);
+  }
+  return encoding;
+}
+
 void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationConfig& config) {
   if (!root.has("rgb")) return;
   const StrictYamlMap rgb =
       root.map("rgb", {"width", "height", "camera", "rate_hz", "samples_per_pixel",
                        "read_noise_dn", "electrons_per_dn", "exposure_reflectance", "blackouts",
-                       "exposure_s", "vignetting", "auto_gain"});
+                       "exposure_s", "vignetting", "auto_gain", "encoding"});
   SimulatedRgbConfig& r = config.rgb;
   if (rgb.has("camera") && (rgb.has("width") || rgb.has("height"))) {
     rgb.fail("camera", "give either camera or width and height, not both");
@@ -170,6 +191,7 @@ void readRgb(const StrictYamlMap& root, const YAML::Node& rgb_node, SimulationCo
   r.exposure_s = rgb.numberInRange("exposure_s", 0.0, 1.0 / r.rate_hz, r.exposure_s);
   if (rgb.has("vignetting")) r.vignetting = readVignetting(rgb);
   if (rgb.has("auto_gain")) r.auto_gain = readAutoGain(rgb);
+  if (rgb.has("encoding")) r.encoding = readEncoding(rgb);
 }
 
 void readUhi(const StrictYamlMap& root, SimulationConfig& config) {

@@ -37,6 +37,22 @@ TEST_F(RgbVideoSettingsYaml, AbsentSettingsLeaveEveryEffectOff) {
   EXPECT_EQ(config.rgb.exposure_s, 0.0);
   EXPECT_EQ(config.rgb.vignetting.model, VignettingModel::none);
   EXPECT_FALSE(config.rgb.auto_gain.enabled);
+  EXPECT_EQ(config.rgb.encoding.format, RgbFrameFormat::png);
+}
+
+TEST_F(RgbVideoSettingsYaml, EncodingFormats) {
+  EXPECT_EQ(read("rgb: {encoding: {format: h264}}\n").rgb.encoding.format, RgbFrameFormat::h264);
+  const RgbEncodingConfig jpeg = read("rgb: {encoding: {format: jpeg, jpeg_quality: 80}}\n").rgb.encoding;
+  EXPECT_EQ(jpeg.format, RgbFrameFormat::jpeg);
+  EXPECT_EQ(jpeg.jpeg_quality, 80);
+  EXPECT_EQ(errorOf("rgb: {encoding: {format: mjpeg}}\n"),
+            file() + ":line 3, key rgb.encoding.format: expected png, jpeg or h264, got 'mjpeg'");
+  EXPECT_EQ(errorOf("rgb: {encoding: {format: h264, jpeg_quality: 80}}\n"),
+            file() + ":line 3, key rgb.encoding.jpeg_quality: only allowed with format: jpeg");
+  EXPECT_NE(errorOf("rgb: {encoding: {format: jpeg, jpeg_quality: 101}}\n").find("rgb.encoding.jpeg_quality"),
+            std::string::npos);
+  EXPECT_NE(errorOf("rgb: {width: 321, height: 180, encoding: {format: h264}}\n").find("even width"),
+            std::string::npos);
 }
 
 TEST_F(RgbVideoSettingsYaml, VignettingModels) {
