@@ -82,20 +82,29 @@ SegmentJoinOptions options(const std::string& descriptor = "sift") {
 // refuse an unrelated one.
 class SegmentJoinerWith : public ::testing::TestWithParam<std::string> {};
 
+// Two described keyframes of the same seabed across a gap: the camera moved
+// 6 cm (24 px), and the new keyframe's segment S is a similarity S_S_G away
+// from G; the new keyframe sees the same landmarks.
+struct SameSeabedPair {
+  PinholeRadtanCamera camera = flatCamera();
+  Sim3 S_S_G{2.5, expSO3(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(1.0, 2.0, -0.5)};
+  JoinKeyframeView earlier, later;
+  explicit SameSeabedPair(const std::string& descriptor) {
+    const cv::Mat texture = seabedTexture(1);
+    const double dx = 0.06;
+    earlier = keyframeView(0, 0.0, Sim3(), viewOf(texture, 0.0, camera), camera, 7);
+    later = keyframeView(1, dx, S_S_G, viewOf(texture, dx, camera), camera, 7);
+    for (std::size_t i = 0; i < later.pixels.size(); ++i) later.pixels[i].x() -= kFocal * dx;
+    // The same landmarks, seen from the new pose: positions in S are S_S_G of G's.
+    for (std::size_t i = 0; i < later.p_X.size(); ++i) later.p_X[i] = S_S_G.apply(earlier.p_X[i]);
+    describeJoinView(earlier, options(descriptor));
+    describeJoinView(later, options(descriptor));
+  }
+};
+
 TEST_P(SegmentJoinerWith, TwoKeyframesOfTheSameSeabedGiveTheSimilarityBetweenTheirSegments) {
-  const PinholeRadtanCamera camera = flatCamera();
-  const cv::Mat texture = seabedTexture(1);
-  const double dx = 0.06;  // the camera moved 6 cm across the gap: 24 px
-  JoinKeyframeView earlier = keyframeView(0, 0.0, Sim3(), viewOf(texture, 0.0, camera), camera, 7);
-  // The new keyframe sees the same landmarks, shifted; its segment S is a
-  // similarity away from G.
-  const Sim3 S_S_G(2.5, expSO3(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(1.0, 2.0, -0.5));
-  JoinKeyframeView later = keyframeView(1, dx, S_S_G, viewOf(texture, dx, camera), camera, 7);
-  for (std::size_t i = 0; i < later.pixels.size(); ++i) later.pixels[i].x() -= kFocal * dx;
-  // The same landmarks, seen from the new pose: positions in S are S_S_G of G's.
-  for (std::size_t i = 0; i < later.p_X.size(); ++i) later.p_X[i] = S_S_G.apply(earlier.p_X[i]);
-  describeJoinView(earlier, options(GetParam()));
-  describeJoinView(later, options(GetParam()));
+  const SameSeabedPair pair(GetParam());
+  const auto& [camera, S_S_G, earlier, later] = pair;
   EXPECT_EQ(earlier.descriptors.type(), GetParam() == "sift" ? CV_32F : CV_8U);
   const SegmentJoin join = joinKeyframePair(earlier, later, camera, options(GetParam()));
   ASSERT_TRUE(join.ok) << join.failure;
@@ -123,16 +132,8 @@ TEST_P(SegmentJoinerWith, TwoKeyframesOfUnrelatedSeabedGiveNoJoin) {
 // itself, also where the descriptors alone would be ambiguous, and pairs
 // nothing under a similarity that is wrong by more than the gates.
 TEST_P(SegmentJoinerWith, UnderTheAcceptedSimilarityEveryLandmarkPairsWithItself) {
-  const PinholeRadtanCamera camera = flatCamera();
-  const cv::Mat texture = seabedTexture(1);
-  const double dx = 0.06;
-  JoinKeyframeView earlier = keyframeView(0, 0.0, Sim3(), viewOf(texture, 0.0, camera), camera, 7);
-  const Sim3 S_S_G(2.5, expSO3(Eigen::Vector3d(0.2, -0.1, 0.4)), Eigen::Vector3d(1.0, 2.0, -0.5));
-  JoinKeyframeView later = keyframeView(1, dx, S_S_G, viewOf(texture, dx, camera), camera, 7);
-  for (std::size_t i = 0; i < later.pixels.size(); ++i) later.pixels[i].x() -= kFocal * dx;
-  for (std::size_t i = 0; i < later.p_X.size(); ++i) later.p_X[i] = S_S_G.apply(earlier.p_X[i]);
-  describeJoinView(earlier, options(GetParam()));
-  describeJoinView(later, options(GetParam()));
+  const SameSeabedPair pair(GetParam());
+  const auto& [camera, S_S_G, earlier, later] = pair;
   const double threshold_G = 0.05;  // 5 % of the 1 m altitude
   const auto pairs = pairsUnderSimilarity(earlier, later, camera, S_S_G.inverse(), threshold_G, options(GetParam()));
   EXPECT_GE(pairs.size(), std::size_t(earlier.descriptors.rows) * 9 / 10);
