@@ -2,8 +2,9 @@
 // variant that runs it (pipelines/run/stage_fingerprints.h): sequential and
 // joint give frontend, georef and surface the same fingerprints, so the
 // stage folders of one are up to date in the other's run folder (what
-// `hsmap compare` relies on), and a joint run stopped before its joint stage
-// still publishes a calibration.yaml that evaluate accepts as joint's.
+// `hsmap compare` relies on; CompareCommand checks that joint then skips
+// them), and a joint run stopped before its joint stage still publishes a
+// calibration.yaml that evaluate accepts as joint's.
 
 #include <gtest/gtest.h>
 
@@ -66,24 +67,6 @@ TEST_F(SharedStages, SequentialAndJointGiveTheirCommonStagesTheSameFingerprints)
   const RunResult third = run(planar, "--variant planar --until georef");
   ASSERT_EQ(third.exit_status, 0) << third.err << third.out;
   EXPECT_NE(fingerprintOf(planar, "georef"), fingerprintOf(sequential, "georef"));
-}
-
-TEST_F(SharedStages, AJointRunResumesFromTheSequentialRunsStageFolders) {
-  const fs::path sequential = temp_ / "sequential", joint = temp_ / "joint";
-  const RunResult first = run(sequential, "--until surface");
-  ASSERT_EQ(first.exit_status, 0) << first.err << first.out;
-  fs::create_directories(joint / "stages");
-  for (const char* stage : {"frontend", "georef", "surface"}) {
-    fs::copy(sequential / stage, joint / stage, fs::copy_options::recursive);
-    fs::copy_file(sequential / "stages" / (std::string(stage) + ".yaml"),
-                  joint / "stages" / (std::string(stage) + ".yaml"));
-  }
-  const RunResult resumed = run(joint, "--variant joint --until surface");
-  ASSERT_EQ(resumed.exit_status, 0) << resumed.err << resumed.out;
-  for (const char* stage : {"frontend", "georef", "surface"}) {
-    EXPECT_NE(resumed.out.find("stage " + std::string(stage) + ": up to date, skipped"), std::string::npos)
-        << stage << "\n" << resumed.out;
-  }
 }
 
 }  // namespace
