@@ -22,12 +22,20 @@
 // trajectory sees only the relative motion between t_ref and the line's
 // exposure, which is what the tie point measured.
 //
+// Self-calibrating form: the UHI intrinsics [f cx k1 k2]
+// (PushbroomCamera::kNumIntrinsics, usually K(0), shared by every tie point)
+// are a variable block after d instead of constants, so the tie points across
+// the whole swath measure the lens model too (docs/JOINT.md, "The push-broom
+// camera's intrinsics"). The fixed form is unchanged (same functor, same cost).
+//
 // Jacobians: Ceres automatic differentiation (a few hundred to a few
 // thousand such factors per solve).
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/geometry/camera_parameters.h"
 #include "core/geometry/pushbroom_camera.h"
@@ -59,6 +67,28 @@ struct PushbroomCameraPointResidual {
   }
 };
 
+// Ceres functor of the self-calibrating form: (S(j..j+4) [7 each], T_C_U [7],
+// d [1], intrinsics [4]) -> residual [2].
+struct PushbroomCameraPointIntrinsicsResidual {
+  PushbroomCameraPointResidual point;  // its line.intrinsics are unused
+
+  template <class T>
+  bool operator()(const T* s0, const T* s1, const T* s2, const T* s3, const T* s4,
+                  const T* extrinsic_T_C_U, const T* time_offset_d, const T* uhi_intrinsics,
+                  T* residual) const {
+    const T* const window[5] = {s0, s1, s2, s3, s4};
+    const int segment = point.s_reference < 1.0 ? 0 : 1;
+    const SE3<T> T_W_C_reference =
+        evaluateSe3Spline(window + segment, T(point.s_reference - segment));
+    const Vector3<T> p_W = T_W_C_reference * Vector3<T>(point.p_C.cast<T>());
+    const Vector2<T> predicted =
+        point.line.predictWith(window, extrinsic_T_C_U, time_offset_d, p_W, uhi_intrinsics);
+    residual[0] = predicted.x() - point.line.u_measured;
+    residual[1] = predicted.y();
+    return true;
+  }
+};
+
 class PushbroomCameraPointFactor : public CeresFactor {
  public:
   static constexpr int kResidualDimension = 2;
@@ -73,6 +103,16 @@ class PushbroomCameraPointFactor : public CeresFactor {
                              const Eigen::Vector3d& p_C, const PushbroomObservation& observation,
                              const PushbroomParameters& camera, NoiseModel noise,
                              RobustLoss robust_loss = RobustLoss::none());
+  // Self-calibrating form: keys S(j..j+4), extrinsic_T_C_U, time_offset_d,
+  // uhi_intrinsics (a vector of PushbroomCamera::kNumIntrinsics). `camera`
+  // still gives the window's checks and the residual's sample count; its
+  // intrinsics are not used by the residual.
+  PushbroomCameraPointFactor(const SplineTiming& spline, double time_offset_guess_s,
+                             Key extrinsic_T_C_U, Key time_offset_d, Key uhi_intrinsics,
+                             double t_reference, const Eigen::Vector3d& p_C,
+                             const PushbroomObservation& observation,
+                             const PushbroomParameters& camera, NoiseModel noise,
+                             RobustLoss robust_loss = RobustLoss::none());
 
   std::string name() const override { return "PushbroomCameraPointFactor"; }
   std::unique_ptr<ceres::CostFunction> createCostFunction() const override;
@@ -81,14 +121,27 @@ class PushbroomCameraPointFactor : public CeresFactor {
   double referenceTime() const { return t_reference_; }
   const Eigen::Vector3d& pointInCamera() const { return p_C_; }
   const PushbroomObservation& observation() const { return observation_; }
+  bool estimatesIntrinsics() const { return estimates_intrinsics_; }
 
  private:
+  static std::vector<Key> keysFor(const SplineTiming& spline, double time_offset_guess_s,
+                           Key extrinsic_T_C_U, Key time_offset_d, const std::optional<Key>& uhi_intrinsics,
+                           const PushbroomObservation& observation);
+  PushbroomCameraPointFactor(const SplineTiming& spline, double time_offset_guess_s,
+                             Key extrinsic_T_C_U, Key time_offset_d,
+                             const std::optional<Key>& uhi_intrinsics, double t_reference,
+                             const Eigen::Vector3d& p_C, const PushbroomObservation& observation,
+                             const PushbroomParameters& camera, NoiseModel noise,
+                             RobustLoss robust_loss);
+  PushbroomCameraPointResidual residual() const;
+
   SplineTiming spline_;
   int first_control_point_;
   double t_reference_;
   Eigen::Vector3d p_C_;
   PushbroomObservation observation_;
   PushbroomCamera camera_;
+  bool estimates_intrinsics_ = false;
 };
 
 }  // namespace hsmap

@@ -97,13 +97,21 @@ struct PushbroomLineResidual {
   template <class T>
   Vector2<T> predict(const T* const* window, const T* extrinsic_T_C_U, const T* time_offset_d,
                      const Vector3<T>& p_W) const {
+    std::array<T, PushbroomCamera::kNumIntrinsics> k;
+    for (int i = 0; i < PushbroomCamera::kNumIntrinsics; ++i) k[i] = T(intrinsics[i]);
+    return predictWith(window, extrinsic_T_C_U, time_offset_d, p_W, k.data());
+  }
+
+  // predict() with the intrinsics [f cx k1 k2] given (a variable block of a
+  // self-calibrating factor) instead of the constant `intrinsics`.
+  template <class T>
+  Vector2<T> predictWith(const T* const* window, const T* extrinsic_T_C_U, const T* time_offset_d,
+                         const Vector3<T>& p_W, const T* uhi_intrinsics) const {
     const T s = T(s_recorded) + time_offset_d[0] * inverse_dt;
     const int segment = scalarPart(s) < 1.0 ? 0 : 1;
     const SE3<T> T_W_C = evaluateSe3Spline(window + segment, T(s - double(segment)));
     const SE3<T> T_W_U = T_W_C * SE3<T>::fromParameters(extrinsic_T_C_U);
-    std::array<T, PushbroomCamera::kNumIntrinsics> k;
-    for (int i = 0; i < PushbroomCamera::kNumIntrinsics; ++i) k[i] = T(intrinsics[i]);
-    return projectPushbroom(T_W_U, p_W, k.data());
+    return projectPushbroom(T_W_U, p_W, uhi_intrinsics);
   }
 
   template <class T>

@@ -70,14 +70,35 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
   }
   blocks_.resize(total);
   loadValues();
+  for (const auto& [key, components] : options_.constant_components) {
+    if (graph_.factorsOf(key).empty()) {
+      fail("constant components of " + key.toString() + ": the variable is not used by any factor of the graph");
+    }
+    if (values_.type(key) == ValueType::pose3) {
+      fail("constant components of " + key.toString() + ": not supported on poses");
+    }
+    for (const int index : components) {
+      if (index < 0 || index >= values_.size(key)) {
+        fail("constant components of " + key.toString() + ": index " + std::to_string(index) +
+             " is outside [0, " + std::to_string(values_.size(key)) + ")");
+      }
+    }
+    if (!components.empty() && !isConstant(key)) {
+      subset_manifolds_[key] = std::make_unique<ceres::SubsetManifold>(values_.size(key), components);
+    }
+  }
   for (const Key& key : variables_) {
     const bool is_pose = values_.type(key) == ValueType::pose3;
-    problem_->AddParameterBlock(block(key), values_.size(key), is_pose ? se3_manifold_.get() : nullptr);
+    const auto subset = subset_manifolds_.find(key);
+    ceres::Manifold* manifold = is_pose ? se3_manifold_.get()
+                                : subset != subset_manifolds_.end() ? subset->second.get()
+                                                                    : nullptr;
+    problem_->AddParameterBlock(block(key), values_.size(key), manifold);
     if (isConstant(key)) {
       ++num_constant_variables_;
       problem_->SetParameterBlockConstant(block(key));
     } else {
-      num_free_parameters_ += values_.tangentSize(key);
+      num_free_parameters_ += tangentSize(key);
     }
   }
 
@@ -182,6 +203,12 @@ GraphProblem::GraphProblem(const FactorGraph& graph, Values& values, GraphProble
 }
 
 GraphProblem::~GraphProblem() = default;
+
+int GraphProblem::tangentSize(Key key) const {
+  const auto subset = subset_manifolds_.find(key);
+  if (subset != subset_manifolds_.end()) return subset->second->TangentSize();
+  return values_.tangentSize(key);
+}
 
 double* GraphProblem::block(Key key) {
   const auto it = block_offset_.find(key);

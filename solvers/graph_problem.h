@@ -39,6 +39,10 @@
 // Constant keys that have a value but no factor are accepted and have no
 // effect (e.g. "every spline control point" when some are not measured).
 //
+// Constant components (options.constant_components): single doubles of a
+// vector or point held fixed by a ceres::SubsetManifold; errors when the
+// key is a pose, not a variable, or an index is out of range.
+//
 // Errors (std::invalid_argument, thrown by the constructor): a factor's key
 // without a value (the first few are listed), a factor that is not a
 // CeresFactor, a cost-function block size or residual count that does not
@@ -78,6 +82,12 @@ struct VariableBound {
 struct GraphProblemOptions {
   // Variables held fixed at their current value (gauge, known calibration).
   std::set<Key> constant;
+  // Single stored doubles of a non-pose variable held at their current value
+  // while the rest of it is estimated (ceres::SubsetManifold), e.g. a
+  // camera's distortion coefficient whose survey sigma is 0. The variable's
+  // tangent space (and so its covariance) then has only the free components,
+  // in stored order (GraphProblem::tangentSize()).
+  std::map<Key, std::vector<int>> constant_components;
   std::vector<VariableBound> bounds;
 };
 
@@ -132,6 +142,9 @@ class GraphProblem {
   // The variables of the problem, in key order.
   const std::vector<Key>& variables() const { return variables_; }
   bool isConstant(Key key) const { return options_.constant.count(key) != 0; }
+  // The degrees of freedom of `key` in the solve: Values::tangentSize()
+  // less its constant_components.
+  int tangentSize(Key key) const;
   // Variables of the problem held constant (constant keys without factors
   // are not counted).
   std::size_t numConstantVariables() const { return num_constant_variables_; }
@@ -164,6 +177,7 @@ class GraphProblem {
   // Owned here and shared by the problem's blocks, so they are declared
   // before (and destroyed after) the problem.
   std::unique_ptr<ceres::Manifold> se3_manifold_;
+  std::map<Key, std::unique_ptr<ceres::Manifold>> subset_manifolds_;
   std::map<std::pair<int, double>, std::unique_ptr<ceres::LossFunction>> losses_;
   std::unique_ptr<ceres::Problem> problem_;
 

@@ -82,14 +82,13 @@ class LandmarkSchur {
 LandmarkSchur::LandmarkSchur(GraphProblem& problem, const std::vector<Key>& keys,
                              const CovarianceOptions& options)
     : keys_(keys) {
-  Values& values = problem.values();
   const std::unordered_set<Key> eliminated(problem.eliminatedLandmarks().begin(),
                                            problem.eliminatedLandmarks().end());
   for (const Key& key : problem.variables()) {
     if (problem.isConstant(key) || eliminated.count(key) != 0) continue;
     reduced_offset_.emplace(key, reduced_dimension_);
     reduced_.push_back(key);
-    reduced_dimension_ += values.tangentSize(key);
+    reduced_dimension_ += problem.tangentSize(key);
   }
   if (reduced_dimension_ > kLandmarkSchurMaxReducedDimension) {
     throw std::invalid_argument(
@@ -101,9 +100,9 @@ LandmarkSchur::LandmarkSchur(GraphProblem& problem, const std::vector<Key>& keys
         " this dense method handles; use the sparse_qr algorithm");
   }
   for (const Key& key : problem.eliminatedLandmarks()) {
-    if (values.tangentSize(key) != kLandmarkSize) {
+    if (problem.tangentSize(key) != kLandmarkSize) {
       throw std::runtime_error(std::string(kPrefix) + "eliminated landmark " + key.toString() +
-                               " has " + std::to_string(values.tangentSize(key)) +
+                               " has " + std::to_string(problem.tangentSize(key)) +
                                " degrees of freedom, not 3");
     }
     landmark_index_.emplace(key, static_cast<int>(landmarks_.size()));
@@ -113,7 +112,7 @@ LandmarkSchur::LandmarkSchur(GraphProblem& problem, const std::vector<Key>& keys
   columns_.resize(keys_.size());
   for (std::size_t a = 0; a < keys_.size(); ++a) {
     KeyColumns& columns = columns_[a];
-    columns.tangent = values.tangentSize(keys_[a]);
+    columns.tangent = problem.tangentSize(keys_[a]);
     columns.constant = problem.isConstant(keys_[a]);
     if (columns.constant) continue;
     const auto landmark = landmark_index_.find(keys_[a]);
@@ -140,7 +139,6 @@ LandmarkSchur::LandmarkSchur(GraphProblem& problem, const std::vector<Key>& keys
 }
 
 void LandmarkSchur::evaluateAndReduce(GraphProblem& problem, const CovarianceOptions& options) {
-  Values& values = problem.values();
   const int n_c = reduced_dimension_;
   const int n_l = kLandmarkSize * static_cast<int>(landmarks_.size());
 
@@ -362,7 +360,7 @@ Eigen::MatrixXd landmarkSchurJointCovariance(GraphProblem& problem, const std::v
   int n = 0;
   for (const Key& key : keys) {
     offsets.push_back(n);
-    n += problem.values().tangentSize(key);
+    n += problem.tangentSize(key);
   }
   Eigen::MatrixXd joint(n, n);
   for (std::size_t a = 0; a < keys.size(); ++a) {

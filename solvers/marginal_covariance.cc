@@ -84,7 +84,6 @@ std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
   if (options.algorithm == CovarianceOptions::Algorithm::landmark_schur) {
     return internal::landmarkSchurMarginalCovariances(problem, keys, options);
   }
-  Values& values = problem.values();
   problem.loadValues();
   std::vector<std::pair<const double*, const double*>> pairs;
   for (const Key& key : keys) pairs.emplace_back(problem.block(key), problem.block(key));
@@ -93,7 +92,7 @@ std::map<Key, Eigen::MatrixXd> marginalCovariances(GraphProblem& problem,
 
   std::map<Key, Eigen::MatrixXd> result;
   for (const Key& key : keys) {
-    const int n = values.tangentSize(key);
+    const int n = problem.tangentSize(key);
     RowMajorMatrix block(n, n);
     if (!covariance.GetCovarianceBlockInTangentSpace(problem.block(key), problem.block(key),
                                                      block.data())) {
@@ -112,13 +111,12 @@ Eigen::MatrixXd jointMarginalCovariance(GraphProblem& problem, const std::vector
   if (options.algorithm == CovarianceOptions::Algorithm::landmark_schur) {
     return internal::landmarkSchurJointCovariance(problem, keys, options);
   }
-  Values& values = problem.values();
   problem.loadValues();
   std::vector<const double*> blocks;
   int n = 0;
   for (const Key& key : keys) {
     blocks.push_back(problem.block(key));
-    n += values.tangentSize(key);
+    n += problem.tangentSize(key);
   }
   ceres::Covariance covariance(ceresOptions(options));
   if (!covariance.Compute(blocks, &problem.problem())) rankDeficient(problem);

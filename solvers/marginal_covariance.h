@@ -11,7 +11,9 @@
 //   pose3   6x6 over the right perturbation xi = [rho; phi] of
 //           Se3Manifold (metres, radians; expressed in the pose's own frame,
 //           e.g. the body frame of T_W_B)
-//   point3  3x3 (metres^2), scalar 1x1, vector n x n (stored units)
+//   point3  3x3 (metres^2), scalar 1x1, vector n x n (stored units; only
+//           the free ones, in stored order, when GraphProblemOptions::
+//           constant_components holds some)
 // A variable held constant has a zero covariance (and zero correlations).
 //
 // Rank deficiency. When J does not have full column rank the covariance is

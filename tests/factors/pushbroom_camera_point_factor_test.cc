@@ -107,6 +107,54 @@ TEST(PushbroomCameraPointFactor, JacobiansMatchNumericTangentDifferences) {
   }
 }
 
+Eigen::VectorXd intrinsicsOf(const PushbroomParameters& p) {
+  Eigen::VectorXd k(PushbroomCamera::kNumIntrinsics);
+  k << p.f, p.cx, p.distortion[0], p.distortion[1];
+  return k;
+}
+
+TEST(PushbroomCameraPointFactor, SelfCalibratingFormEqualsTheFixedFormAtTheSameIntrinsics) {
+  std::mt19937 rng(8);
+  const SE3Splined spline = trajectory(rng);
+  const SplineTiming timing = SplineTiming::of(spline);
+  const double t_recorded = kT0 + 4.6 * kDt;
+  const Eigen::Vector3d p_C(-0.4, 0.1, 2.2);
+  const PushbroomCameraPointFactor fixed(timing, 0.0, E(0), D(0), t_recorded, p_C, {t_recorded, 300.0},
+                                         uhiCamera(), lineNoise());
+  const PushbroomCameraPointFactor calibrating(timing, 0.0, E(0), D(0), K(0), t_recorded, p_C,
+                                               {t_recorded, 300.0}, uhiCamera(), lineNoise());
+  EXPECT_TRUE(calibrating.estimatesIntrinsics());
+  EXPECT_FALSE(fixed.estimatesIntrinsics());
+  EXPECT_EQ(calibrating.keys().back(), K(0));
+  EXPECT_EQ(calibrating.keys().size(), fixed.keys().size() + 1);
+  auto blocks = stateOf(spline, fixed.firstControlPoint(), kT_C_U, 0.01);
+  const Eigen::VectorXd r_fixed = residualAt(*fixed.createCostFunction(), blocks);
+  blocks.push_back(test::vectorBlock(intrinsicsOf(uhiCamera())));
+  EXPECT_TRUE(residualAt(*calibrating.createCostFunction(), blocks).isApprox(r_fixed, 1e-12));
+  // Another focal length moves the predicted sample: the block is used.
+  blocks.back().values[0] *= 1.01;
+  EXPECT_GT(std::abs(residualAt(*calibrating.createCostFunction(), blocks)[0] - r_fixed[0]), 0.1);
+}
+
+TEST(PushbroomCameraPointFactor, SelfCalibratingJacobiansMatchNumericTangentDifferences) {
+  std::mt19937 rng(9);
+  const SE3Splined spline = trajectory(rng);
+  const SplineTiming timing = SplineTiming::of(spline);
+  Eigen::VectorXd k = intrinsicsOf(uhiCamera());
+  k << 1512.0, 955.0, 0.035, -0.012;
+  for (const auto& [t_recorded, d] : std::vector<std::pair<double, double>>{
+           {kT0 + 3.2 * kDt, 0.0}, {kT0 + 6.8 * kDt, -0.08}}) {
+    for (const Eigen::Vector3d& p_C : {Eigen::Vector3d(0.2, 0.1, 2.5), Eigen::Vector3d(-0.9, 0.05, 1.8)}) {
+      const PushbroomCameraPointFactor factor(timing, 0.0, E(0), D(0), K(0), t_recorded + 0.02, p_C,
+                                              {t_recorded, 900.0}, uhiCamera(), lineNoise());
+      auto blocks = stateOf(spline, factor.firstControlPoint(), kT_C_U, d);
+      blocks.push_back(test::vectorBlock(k));
+      EXPECT_TRUE(tangentJacobiansMatchNumeric(*factor.createCostFunction(), blocks))
+          << "t_recorded " << t_recorded << ", d " << d << ", p_C " << p_C.transpose();
+    }
+  }
+}
+
 TEST(PushbroomCameraPointFactor, RejectsAReferenceTimeOutsideItsWindow) {
   const SplineTiming timing{kT0, kDt, kNumControlPoints};
   const double t_recorded = kT0 + 4.3 * kDt;
