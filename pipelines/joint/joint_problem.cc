@@ -20,6 +20,7 @@
 #include "core/graph/values.h"
 #include "factors/extrinsic_prior_factor.h"
 #include "factors/pushbroom_camera_point_factor.h"
+#include "factors/pushbroom_intrinsics_prior_factor.h"
 #include "factors/pushbroom_line_factor.h"
 #include "factors/spline_ins_attitude_factor.h"
 #include "factors/spline_ins_position_factor.h"
@@ -57,6 +58,7 @@ void JointOptions::validate() const {
   positive("sigma_linear_acceleration", sigma_linear_acceleration);
   positive("sigma_angular_acceleration", sigma_angular_acceleration);
   positive("weak_fraction_of_prior", weak_fraction_of_prior);
+  positive("inseparable_correlation", inseparable_correlation);
   for (const auto& [name, value, least] :
        {std::tuple{"min_tie_points", min_tie_points, 1}, std::tuple{"min_frames_in_support", min_frames_in_support, 1},
         std::tuple{"max_iterations", max_iterations, 1}, std::tuple{"num_threads", num_threads, 0},
@@ -68,9 +70,35 @@ void JointOptions::validate() const {
   }
 }
 
+bool JointInputs::estimatesUhiIntrinsics() const {
+  for (double sigma : uhi_intrinsics_sigma) {
+    if (sigma > 0.0) return true;
+  }
+  return false;
+}
+
 namespace {
 
 constexpr double kDefaultRangeM = 2.0;
+constexpr const char* kIntrinsicNames[PushbroomCamera::kNumIntrinsics] = {"f", "cx", "distortion[0]",
+                                                                          "distortion[1]"};
+// The components of T_C_U's tangent [rho; phi] and of d, as the warnings name them.
+constexpr const char* kExtrinsicComponentNames[7] = {
+    "T_C_U's translation along U's x",
+    "T_C_U's translation along U's y",
+    "T_C_U's translation along U's z",
+    "T_C_U's rotation about U's x (the line's axis)",
+    "T_C_U's rotation about U's y (the line's normal)",
+    "T_C_U's rotation about U's z (the optical axis)",
+    "the time offset d"};
+
+PushbroomParameters withIntrinsics(PushbroomParameters camera,
+                                   const std::array<double, PushbroomCamera::kNumIntrinsics>& k) {
+  camera.f = k[0];
+  camera.cx = k[1];
+  camera.distortion = {k[2], k[3]};
+  return camera;
+}
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 void checkInputs(const JointInputs& in) {
@@ -78,6 +106,11 @@ void checkInputs(const JointInputs& in) {
     throw std::invalid_argument(
         "solveJointProblem: the map, the front-end result, the frame times and the INS track are "
         "required");
+  }
+  if (in.estimatesUhiIntrinsics() && in.surface_trajectory == nullptr) {
+    throw std::invalid_argument(
+        "solveJointProblem: the UHI intrinsics are estimated only with tie points carried by the "
+        "trajectory (JointInputs::surface_trajectory)");
   }
   if (in.spline.numControlPoints() < 5) {
     throw std::invalid_argument("solveJointProblem: the spline needs at least 5 control points, got " +
@@ -129,7 +162,8 @@ void forEachObservationOf(const FrameRecord& frame, bool keyframe_of_map, const 
 void tieResidualsOnGround(const std::vector<const JointTiePoint*>& ties, const std::vector<bool>& keep,
                           const JointInputs& in, const JointResult& solved, double& across_m,
                           double& along_m) {
-  const PushbroomCamera camera(in.uhi_camera);
+  const PushbroomCamera camera(solved.uhi_intrinsics ? withIntrinsics(in.uhi_camera, *solved.uhi_intrinsics)
+                                                     : in.uhi_camera);
   const SE3Splined& spline = solved.spline;
   double sum_across = 0.0, sum_along = 0.0;
   std::size_t n = 0;
@@ -148,12 +182,55 @@ void tieResidualsOnGround(const std::vector<const JointTiePoint*>& ties, const s
     const Eigen::Vector3d p_U = T_W_U.inverse() * p_W;
     const Eigen::Vector2d predicted = camera.project(p_U);
     const double range = p_U.norm();
-    sum_across += std::pow((predicted.x() - tie.sample) / in.uhi_camera.f * range, 2);
+    sum_across += std::pow((predicted.x() - tie.sample) / camera.parameters().f * range, 2);
     sum_along += std::pow(predicted.y() * range, 2);
     ++n;
   }
   across_m = n > 0 ? std::sqrt(sum_across / double(n)) : 0.0;
   along_m = n > 0 ? std::sqrt(sum_along / double(n)) : 0.0;
+}
+
+// The intrinsics' 1-sigma from the joint covariance over [T_C_U (6), d (1),
+// the free intrinsics], and the ones the survey cannot separate: a
+// correlation above options.inseparable_correlation with a component of
+// T_C_U or d (cx against the rotation about the line's normal shifts every
+// sample alike over a flat seabed), or a 1-sigma hardly below the prior's.
+void checkIntrinsics(const Eigen::MatrixXd& covariance, const JointInputs& in, const JointOptions& options,
+                     JointResult& result) {
+  constexpr int kOthers = 7;
+  std::array<double, PushbroomCamera::kNumIntrinsics> sigma{};
+  int column = kOthers;
+  for (int i = 0; i < PushbroomCamera::kNumIntrinsics; ++i) {
+    const double prior = in.uhi_intrinsics_sigma[std::size_t(i)];
+    if (!(prior > 0.0)) continue;  // held: no column, 0 sigma
+    const double variance = std::max(0.0, covariance(column, column));
+    sigma[std::size_t(i)] = std::sqrt(variance);
+    std::ostringstream reason;
+    double worst = 0.0;
+    int worst_component = -1;
+    for (int c = 0; c < kOthers; ++c) {
+      const double denominator = std::sqrt(variance * std::max(0.0, covariance(c, c)));
+      if (!(denominator > 0.0)) continue;
+      const double correlation = covariance(column, c) / denominator;
+      if (std::abs(correlation) > std::abs(worst)) {
+        worst = correlation;
+        worst_component = c;
+      }
+    }
+    const std::string name = std::string("uhi_camera.") + kIntrinsicNames[i];
+    if (worst_component >= 0 && std::abs(worst) > options.inseparable_correlation) {
+      reason << name << " cannot be separated from " << kExtrinsicComponentNames[worst_component]
+             << " on this survey (correlation " << worst << "); it stays close to survey.yaml's value";
+      result.inseparable_intrinsics.push_back(reason.str());
+    } else if (sigma[std::size_t(i)] > options.weak_fraction_of_prior * prior) {
+      reason << name << " cannot be separated from T_C_U and d on this survey (its 1-sigma "
+             << sigma[std::size_t(i)] << " is more than " << options.weak_fraction_of_prior
+             << " of the prior's " << prior << "); it stays close to survey.yaml's value";
+      result.inseparable_intrinsics.push_back(reason.str());
+    }
+    ++column;
+  }
+  result.uhi_intrinsics_sigma = sigma;
 }
 
 }  // namespace
@@ -186,6 +263,15 @@ std::string JointResult::summary() const {
           << (*sigma_translation_m * 1000.0).transpose() << " mm, d " << *time_offset_sigma_s * 1000.0
           << " ms (covariance " << seconds_covariance << " s)\n";
     }
+    if (uhi_intrinsics) {
+      out << "  UHI intrinsics: f " << (*uhi_intrinsics)[0] << ", cx " << (*uhi_intrinsics)[1] << ", k1 "
+          << (*uhi_intrinsics)[2] << ", k2 " << (*uhi_intrinsics)[3];
+      if (uhi_intrinsics_sigma) {
+        out << " (1-sigma " << (*uhi_intrinsics_sigma)[0] << ", " << (*uhi_intrinsics_sigma)[1] << ", "
+            << (*uhi_intrinsics_sigma)[2] << ", " << (*uhi_intrinsics_sigma)[3] << ")";
+      }
+      out << "\n";
+    }
     out << "  tie point residuals on the ground (RMS over the inliers): "
         << rms_tie_across_m * 1000.0 << " mm across the line, " << rms_tie_along_m * 1000.0
         << " mm along it\n";
@@ -193,6 +279,7 @@ std::string JointResult::summary() const {
   for (const std::string& component : weakly_determined) {
     out << "  weakly determined by this survey: " << component << "\n";
   }
+  for (const std::string& warning : inseparable_intrinsics) out << "  warning: " << warning << "\n";
   for (const std::string& warning : warnings) out << "  warning: " << warning << "\n";
   return out.str();
 }
@@ -267,6 +354,12 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   }
   values.insertPose(E(0), in.T_C_U_start.q, in.T_C_U_start.t);
   values.insertScalar(D(0), in.time_offset_start_s);
+  const bool estimates_intrinsics = in.estimatesUhiIntrinsics();
+  const PushbroomCamera uhi_prior(in.uhi_camera);
+  if (estimates_intrinsics) {
+    const auto& start = in.uhi_intrinsics_start ? *in.uhi_intrinsics_start : uhi_prior.intrinsics();
+    values.insertVector(K(0), Eigen::Vector4d(start[0], start[1], start[2], start[3]));
+  }
   for (const auto& [id, count] : seen_by) {
     if (count < 2) continue;
     values.insertPoint(L(std::uint64_t(id)), in.map_W->landmark(id).p_F);
@@ -352,6 +445,9 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
         ExtrinsicPriorFactor::noiseFromSigmas(in.sigma_rotation_deg, in.sigma_translation_m));
     graph.emplace<TimeOffsetPriorFactor>(D(0), in.time_offset_prior_s,
                                          NoiseModel::isotropic(1, in.time_offset_sigma_s));
+    if (estimates_intrinsics) {
+      graph.emplace<PushbroomIntrinsicsPriorFactor>(K(0), uhi_prior.intrinsics(), in.uhi_intrinsics_sigma);
+    }
     if (tie_factor_index != nullptr) tie_factor_index->assign(ties.size(), std::size_t(-1));
     for (std::size_t i = 0; i < ties.size(); ++i) {
       if (!keep_tie[i]) continue;
@@ -369,9 +465,15 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       if (in.surface_trajectory != nullptr) {
         const double t_reference = tie.t_recorded + in.time_offset_start_s;
         const Eigen::Vector3d p_C = in.surface_trajectory->pose(t_reference).inverse() * tie.p_W;
-        index = graph.emplace<PushbroomCameraPointFactor>(timing, in.time_offset_start_s, E(0), D(0),
-                                                          t_reference, p_C, observation,
-                                                          in.uhi_camera, noise, loss);
+        if (estimates_intrinsics) {
+          index = graph.emplace<PushbroomCameraPointFactor>(timing, in.time_offset_start_s, E(0), D(0), K(0),
+                                                            t_reference, p_C, observation, in.uhi_camera,
+                                                            noise, loss);
+        } else {
+          index = graph.emplace<PushbroomCameraPointFactor>(timing, in.time_offset_start_s, E(0), D(0),
+                                                            t_reference, p_C, observation,
+                                                            in.uhi_camera, noise, loss);
+        }
       } else {
         index = graph.emplace<PushbroomLineFactor>(timing, in.time_offset_start_s, E(0), D(0),
                                                    tie.p_W, observation, in.uhi_camera, noise, loss);
@@ -393,6 +495,10 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   const double reach = 0.45 * spline.dt();
   problem_options.bounds.push_back(
       {D(0), 0, in.time_offset_start_s - reach, in.time_offset_start_s + reach});
+  const std::vector<int> held_intrinsics = PushbroomIntrinsicsPriorFactor::heldParameters(in.uhi_intrinsics_sigma);
+  if (estimates_intrinsics && !held_intrinsics.empty()) {
+    problem_options.constant_components[K(0)] = held_intrinsics;
+  }
 
   std::vector<bool> keep(ties.size(), true);
   {
@@ -440,6 +546,10 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
   result.spline = SE3Splined(spline.t0(), spline.dt(), std::move(control_points));
   result.T_C_U = SE3d(values.poseRotation(E(0)).normalized(), values.poseTranslation(E(0)));
   result.time_offset_s = values.scalar(D(0));
+  if (estimates_intrinsics) {
+    const Eigen::VectorXd k = values.vector(K(0));
+    result.uhi_intrinsics = std::array<double, PushbroomCamera::kNumIntrinsics>{k[0], k[1], k[2], k[3]};
+  }
   if (std::abs(result.time_offset_s - in.time_offset_start_s) > 0.99 * reach) {
     if (options.max_rewindows > 0) {
       // Built again around the new d, from this result (see the header).
@@ -447,6 +557,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
       next.spline = result.spline;
       next.T_C_U_start = result.T_C_U;
       next.time_offset_start_s = result.time_offset_s;
+      next.uhi_intrinsics_start = result.uhi_intrinsics;
       JointOptions fewer = options;
       --fewer.max_rewindows;
       JointResult again = solveJointProblem(next, fewer);
@@ -478,7 +589,9 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     // Only T_C_U and d are asked for: eliminate the landmarks by their Schur
     // complement (the reduced system is the spline, T_C_U and d).
     covariance_options.algorithm = CovarianceOptions::Algorithm::landmark_schur;
-    const Eigen::MatrixXd covariance = jointMarginalCovariance(problem, {E(0), D(0)}, covariance_options);
+    std::vector<Key> asked{E(0), D(0)};
+    if (estimates_intrinsics) asked.push_back(K(0));
+    const Eigen::MatrixXd covariance = jointMarginalCovariance(problem, asked, covariance_options);
     const Eigen::Matrix3d R_C_U = result.T_C_U.q.toRotationMatrix();
     const Eigen::Matrix3d translation_C = R_C_U * covariance.topLeftCorner<3, 3>() * R_C_U.transpose();
     result.sigma_translation_m = translation_C.diagonal().cwiseMax(0.0).cwiseSqrt();
@@ -499,6 +612,7 @@ JointResult solveJointProblem(const JointInputs& in, const JointOptions& options
     if (*result.time_offset_sigma_s > options.weak_fraction_of_prior * in.time_offset_sigma_s) {
       result.weakly_determined.push_back("the time offset d");
     }
+    if (estimates_intrinsics) checkIntrinsics(covariance, in, options, result);
   } catch (const std::exception& error) {
     result.warnings.push_back(std::string("no covariance for T_C_U and d: ") + error.what());
   }

@@ -6,6 +6,10 @@
 //   L(l)  the landmarks of the geo-referenced sparse map (p_W),
 //   E(0)  the RGB-UHI extrinsic T_C_U,
 //   D(0)  the UHI time offset d (true line time = recorded + d),
+//   K(0)  the UHI intrinsics [f cx k1 k2], only when some of
+//         JointInputs::uhi_intrinsics_sigma is > 0 (self-calibration,
+//         issue 44): shared by every tie point, with a prior at uhi_camera
+//         (PushbroomIntrinsicsPriorFactor); a sigma of 0 holds its parameter,
 // with the factors
 //   - every posed frame's observations of the landmarks
 //     (SplineReprojectionFactor at the frame's time; Huber loss): the
@@ -51,12 +55,14 @@
 // (solved == false), so the caller keeps the sequential result.
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "core/geometry/camera_parameters.h"
+#include "core/geometry/pushbroom_camera.h"
 #include "core/geometry/se3.h"
 #include "core/geometry/se3_bspline.h"
 #include "pipelines/frontend/frontend_result.h"
@@ -92,6 +98,10 @@ struct JointOptions {
   double sigma_linear_acceleration = 0.5;   // m/s^2, the smoothness prior
   double sigma_angular_acceleration = 0.5;  // rad/s^2
   double weak_fraction_of_prior = 0.5;
+  // An estimated UHI intrinsic is reported inseparable when its correlation
+  // with a component of T_C_U or d exceeds this, or its 1-sigma is above
+  // weak_fraction_of_prior of its prior's.
+  double inseparable_correlation = 0.95;
   int max_iterations = 30;
   int num_threads = 0;  // 0: every hardware thread
   // When d ends the solve at the bound of the tie factors' window (+-0.45
@@ -141,6 +151,15 @@ struct JointInputs {
   double time_offset_sigma_s = 0.05;
   SE3d T_C_U_start;  // where the solve starts (e.g. the last round's result)
   double time_offset_start_s = 0.0;
+  // 1-sigma of uhi_camera's [f cx k1 k2] (survey.yaml's uhi.camera_sigma):
+  // all 0 (the default) holds the intrinsics at uhi_camera; otherwise they
+  // are estimated with uhi_camera as their prior.
+  std::array<double, PushbroomCamera::kNumIntrinsics> uhi_intrinsics_sigma{};
+  // Where the estimated intrinsics start (e.g. the last round's result);
+  // nullopt: at uhi_camera.
+  std::optional<std::array<double, PushbroomCamera::kNumIntrinsics>> uhi_intrinsics_start;
+
+  bool estimatesUhiIntrinsics() const;
 };
 
 struct JointResult {
@@ -154,6 +173,16 @@ struct JointResult {
   std::optional<Eigen::Vector3d> sigma_rotation_deg;
   std::optional<Eigen::Vector3d> sigma_translation_m;
   std::optional<double> time_offset_sigma_s;
+  // The UHI intrinsics [f cx k1 k2] as solved (nullopt: not estimated) and
+  // their 1-sigma from the same covariance (0 for a parameter held; nullopt
+  // when the covariance could not be computed).
+  std::optional<std::array<double, PushbroomCamera::kNumIntrinsics>> uhi_intrinsics;
+  std::optional<std::array<double, PushbroomCamera::kNumIntrinsics>> uhi_intrinsics_sigma;
+  // Intrinsics the survey cannot separate from the extrinsic or d, each as
+  // a sentence for calibration.yaml's warnings, e.g. "uhi_camera.cx cannot
+  // be separated from T_C_U's rotation about U's y (the line's normal) on
+  // this survey (correlation 0.98)".
+  std::vector<std::string> inseparable_intrinsics;
   // Components the survey leaves weakly determined, e.g. "T_C_U rotation about U's x".
   std::vector<std::string> weakly_determined;
   // d ended at the bound of this solve's window: another round is needed

@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -42,7 +43,10 @@ struct ReducedSurvey {
 // seabed flown level), the case that leaves T_C_U and d weakly observed.
 constexpr std::size_t kKeyframeEvery = 4;
 
-ReducedSurvey makeSurvey(unsigned seed, bool steady = false) {
+// `uhi_distortion`: the true UHI's [k1 k2]; `columns`: the samples every line
+// ties (spread across the swath).
+ReducedSurvey makeSurvey(unsigned seed, bool steady = false, std::array<double, 2> uhi_distortion = {0.0, 0.0},
+                         std::vector<double> columns = {150.0, 560.0, 960.0, 1360.0, 1770.0}) {
   test::TransectConfig config;
   config.seed = seed;
   if (steady) config.dynamics = 0.0;
@@ -92,6 +96,7 @@ ReducedSurvey makeSurvey(unsigned seed, bool steady = false) {
   survey.uhi.samples = 1920;
   survey.uhi.f = 1500.0;
   survey.uhi.cx = 960.0;
+  survey.uhi.distortion = uhi_distortion;
   survey.T_C_U_truth = SE3d(expSO3(Eigen::Vector3d(0.3, -0.2, 0.5) * kDeg), Eigen::Vector3d(0.02, 0.1, 0.01));
   const PushbroomCamera uhi(survey.uhi);
   std::mt19937 rng(seed + 100);
@@ -102,7 +107,7 @@ ReducedSurvey makeSurvey(unsigned seed, bool steady = false) {
     const double t_true = 0.3 + line / 30.0;
     if (t_true > end - 0.3) break;
     const SE3d T_W_U = t.truth_spline.pose(t_true) * survey.T_C_U_truth;
-    for (double u : {150.0, 560.0, 960.0, 1360.0, 1770.0}) {
+    for (double u : columns) {
       const Eigen::Vector3d ray = *uhi.unproject(u);
       const double range = steady ? 3.0 : 2.6 + 0.8 * uniform(rng);  // relief: ranges vary
       survey.ties.push_back({line, t_true - survey.d_truth, u + 0.3 * normal(rng), range,
@@ -214,6 +219,67 @@ TEST(JointProblem, RecoversExtrinsicAndTimeOffsetWithinTheirStatedSigma) {
     const double rms = std::sqrt((aligned - truth).colwise().squaredNorm().mean());
     EXPECT_LT(rms, 0.002);
   }
+}
+
+// Self-calibration (issue 44): the UHI's f 1 % off, cx 3 px off and k1 0.02
+// off, with survey.yaml's sigmas of 15 px, 3 px, 0.02 and 0.01. The tie
+// points are carried by the true trajectory (as the joint stage carries them
+// by the surface's), at 9 columns across the swath over varying relief.
+TEST(JointProblem, RecoversPerturbedPushbroomIntrinsicsWithinTheirStatedSigma) {
+  const ReducedSurvey survey = makeSurvey(
+      4, false, {0.03, -0.01}, {40.0, 260.0, 500.0, 740.0, 960.0, 1180.0, 1420.0, 1660.0, 1880.0});
+  JointInputs inputs = inputsOf(survey);
+  inputs.surface_trajectory = &survey.transect.truth_spline;
+  inputs.uhi_camera.f = survey.uhi.f * 1.01;
+  inputs.uhi_camera.cx = survey.uhi.cx + 3.0;
+  inputs.uhi_camera.distortion = {survey.uhi.distortion[0] + 0.02, survey.uhi.distortion[1]};
+  inputs.uhi_intrinsics_sigma = {15.0, 3.0, 0.02, 0.01};
+  const JointResult result = solveJointProblem(inputs, testOptions());
+  ASSERT_TRUE(result.solved) << result.summary();
+  ASSERT_TRUE(result.uhi_intrinsics && result.uhi_intrinsics_sigma) << result.summary();
+  const std::array<double, 4> truth{survey.uhi.f, survey.uhi.cx, survey.uhi.distortion[0], survey.uhi.distortion[1]};
+  const std::array<double, 4> prior{15.0, 3.0, 0.02, 0.01};
+  for (int i = 0; i < 4; ++i) {
+    const double error = (*result.uhi_intrinsics)[std::size_t(i)] - truth[std::size_t(i)];
+    const double sigma = (*result.uhi_intrinsics_sigma)[std::size_t(i)];
+    EXPECT_LT(std::abs(error), 3.0 * sigma) << "parameter " << i << "\n" << result.summary();
+    // The tie points, not the prior, determined it.
+    EXPECT_LT(sigma, 0.3 * prior[std::size_t(i)]) << "parameter " << i << "\n" << result.summary();
+  }
+  EXPECT_TRUE(result.inseparable_intrinsics.empty()) << result.summary();
+  const Eigen::Vector3d rotation_error_deg = logSO3((survey.T_C_U_truth.inverse() * result.T_C_U).q) / kDeg;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(std::abs(rotation_error_deg[i]), 3.0 * (*result.sigma_rotation_deg)[i]) << result.summary();
+  }
+  EXPECT_LT(std::abs(result.time_offset_s - survey.d_truth), 3.0 * *result.time_offset_sigma_s) << result.summary();
+}
+
+TEST(JointProblem, AHeldIntrinsicStaysAtSurveyYamlsValue) {
+  const ReducedSurvey survey = makeSurvey(4, false, {0.0, 0.0}, {40.0, 500.0, 960.0, 1420.0, 1880.0});
+  JointInputs inputs = inputsOf(survey);
+  inputs.surface_trajectory = &survey.transect.truth_spline;
+  inputs.uhi_camera.f = survey.uhi.f * 1.01;
+  inputs.uhi_intrinsics_sigma = {15.0, 0.0, 0.0, 0.0};
+  const JointResult result = solveJointProblem(inputs, testOptions());
+  ASSERT_TRUE(result.solved && result.uhi_intrinsics && result.uhi_intrinsics_sigma) << result.summary();
+  EXPECT_NEAR((*result.uhi_intrinsics)[0], survey.uhi.f, 3.0 * (*result.uhi_intrinsics_sigma)[0]);
+  EXPECT_EQ((*result.uhi_intrinsics)[1], inputs.uhi_camera.cx);
+  EXPECT_EQ((*result.uhi_intrinsics)[2], 0.0);
+  EXPECT_EQ((*result.uhi_intrinsics_sigma)[1], 0.0);
+}
+
+TEST(JointProblem, ASteadyFlightOverAFlatSeabedCannotSeparateTheUhiCentreFromTheRotation) {
+  const ReducedSurvey survey = makeSurvey(5, /*steady=*/true);
+  JointInputs inputs = inputsOf(survey);
+  inputs.surface_trajectory = &survey.transect.truth_spline;
+  inputs.uhi_intrinsics_sigma = {15.0, 3.0, 0.0, 0.0};
+  const JointResult result = solveJointProblem(inputs, testOptions());
+  ASSERT_TRUE(result.solved) << result.summary();
+  bool cx_named = false;
+  for (const std::string& warning : result.inseparable_intrinsics) {
+    cx_named = cx_named || warning.find("uhi_camera.cx cannot be separated") != std::string::npos;
+  }
+  EXPECT_TRUE(cx_named) << result.summary();
 }
 
 TEST(JointProblem, AKeyframesObservationsComeFromTheMapAndTheOtherFramesFromTheFrontEnd) {
