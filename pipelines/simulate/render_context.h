@@ -3,10 +3,12 @@
 // caster, its material field and the vehicle's lamps.
 #include <cstdint>
 
+#include "core/geometry/se3.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "pipelines/simulate/scene/material_field.h"
 #include "pipelines/simulate/scene/seabed_scene.h"
 #include "pipelines/simulate/underwater_optics.h"
+#include "pipelines/simulate/water_backscatter.h"
 
 namespace hsmap {
 
@@ -19,6 +21,11 @@ struct RenderContext {
   bool shadows = true;
   // Nominal altitude, for the fixed exposure of both cameras.
   double nominal_altitude_m = 2.0;
+  // Light scattered by the water into the cameras (off by default), and the
+  // cameras on the vehicle, which place the lamps relative to each camera.
+  WaterBackscatterConfig backscatter;
+  SE3d T_B_C;
+  SE3d T_C_U;
 
   const MeshRayCaster* shadowCaster() const { return shadows ? caster : nullptr; }
   SurfaceKind kindOf(int triangle) const { return scene->triangle_kind[triangle]; }

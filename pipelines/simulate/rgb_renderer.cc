@@ -54,6 +54,45 @@ RgbRenderer::RgbRenderer(const RenderContext& context, const SimulatedRgbConfig&
     }
   }
   vignetting_ = vignettingImage(config.vignetting, config.camera);
+  if (context.backscatter.enabled) {
+    for (int v = 0; v < camera.height(); ++v) {
+      for (int u = 0; u < camera.width(); ++u) {
+        for (const Eigen::Vector2d& offset : offsets) {
+          uv_.emplace_back(float(u + offset.x()), float(v + offset.y()));
+        }
+      }
+    }
+    if (config.samples_per_pixel == 2) {
+      for (int v = 0; v <= camera.height(); ++v) {
+        for (int u = 0; u <= camera.width(); ++u) corner_uv_.emplace_back(u - 0.5f, v - 0.5f);
+      }
+    }
+    grid_u_ = (camera.width() + kBackscatterGridPx - 1) / kBackscatterGridPx + 1;
+    grid_v_ = (camera.height() + kBackscatterGridPx - 1) / kBackscatterGridPx + 1;
+    std::vector<Eigen::Vector3d> grid_rays_C;
+    for (int j = 0; j < grid_v_; ++j) {
+      for (int i = 0; i < grid_u_; ++i) {
+        grid_rays_C.push_back(rayThrough(camera, -0.5 + double(i) * camera.width() / (grid_u_ - 1),
+                                         -0.5 + double(j) * camera.height() / (grid_v_ - 1)));
+      }
+    }
+    // The channels as the radiance table integrates them (rgb_radiance_table.h),
+    // times pi: the renderer's linear value is pi times the radiance.
+    std::vector<double> wavelengths;
+    for (double nm = 380.0; nm <= 720.0; nm += 5.0) wavelengths.push_back(nm);
+    BackscatterSpectrum spectrum;
+    spectrum.weight.resize(3, Eigen::Index(wavelengths.size()));
+    for (std::size_t i = 0; i < wavelengths.size(); ++i) {
+      const double nm = wavelengths[i];
+      spectrum.attenuation_per_m.push_back(waterAttenuationPerM(nm, context.turbidity));
+      for (int k = 0; k < 3; ++k) {
+        spectrum.weight(k, Eigen::Index(i)) = M_PI * rgbResponse(k, nm) * lampSpectrum(nm) *
+                                              waterScatteringPerM(nm, context.turbidity) * 5.0;
+      }
+    }
+    backscatter_ = std::make_unique<WaterBackscatterTable>(
+        context.backscatter, context.lamps->backscatterLamps(context.T_B_C), grid_rays_C, spectrum);
+  }
   // Exposure: a flat surface below the camera at the nominal altitude.
   const double altitude = context.nominal_altitude_m;
   const LampLighting lighting = context.lamps->nominalLighting(altitude);
@@ -81,8 +120,23 @@ Eigen::Vector3f RgbRenderer::shade(const Eigen::Vector3d& p_W, const RayHit& hit
   return linear;
 }
 
+void RgbRenderer::addBackscatter(const Eigen::Vector2f& uv, double range_m,
+                                 Eigen::Vector3f& linear) const {
+  const float fu = (uv.x() + 0.5f) * float(grid_u_ - 1) / float(config_.camera.width);
+  const float fv = (uv.y() + 0.5f) * float(grid_v_ - 1) / float(config_.camera.height);
+  const int i = std::clamp(int(std::floor(fu)), 0, grid_u_ - 2);
+  const int j = std::clamp(int(std::floor(fv)), 0, grid_v_ - 2);
+  const float tu = std::clamp(fu - float(i), 0.0f, 1.0f);
+  const float tv = std::clamp(fv - float(j), 0.0f, 1.0f);
+  const int ray = j * grid_u_ + i;
+  backscatter_->accumulate(ray, range_m, (1.0f - tu) * (1.0f - tv), linear.data());
+  backscatter_->accumulate(ray + 1, range_m, tu * (1.0f - tv), linear.data());
+  backscatter_->accumulate(ray + grid_u_, range_m, (1.0f - tu) * tv, linear.data());
+  backscatter_->accumulate(ray + grid_u_ + 1, range_m, tu * tv, linear.data());
+}
+
 void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,
-                            int count, Eigen::Vector3f* out) const {
+                            const Eigen::Vector2f* uv, int count, Eigen::Vector3f* out) const {
   // Per thread, reused across rows and frames: the renderer allocates nothing per row.
   struct Buffers {
     std::vector<Ray> rays;
@@ -132,9 +186,12 @@ void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::V
   for (int i = 0; i < count; ++i) {
     if (!b.hits[i].hit()) {
       out[i].setZero();
-      continue;
+    } else {
+      out[i] = shade(b.points_W[i], b.hits[i], b.lighting[i]);
     }
-    out[i] = shade(b.points_W[i], b.hits[i], b.lighting[i]);
+    if (backscatter_) {
+      addBackscatter(uv[i], b.hits[i].hit() ? b.hits[i].distance : backscatter_->maxRange(), out[i]);
+    }
   }
 }
 
@@ -150,15 +207,16 @@ void RgbRenderer::renderLinear(const Pose& pose, std::vector<Eigen::Vector3f>& s
     corners.resize(std::size_t(width + 1) * (height + 1));
     tbb::parallel_for(0, height + 1, [&](int v) {
       const std::size_t offset = std::size_t(v) * (width + 1);
-      shadeRays(pose.T_W_B, pose.T_W_C, corner_rays_C_.data() + offset, width + 1,
-                corners.data() + offset);
+      shadeRays(pose.T_W_B, pose.T_W_C, corner_rays_C_.data() + offset,
+                backscatter_ ? corner_uv_.data() + offset : nullptr, width + 1, corners.data() + offset);
     });
   }
   tbb::parallel_for(0, height, [&](int v) {
     const std::size_t row_rays = std::size_t(width) * per_pixel;
     thread_local std::vector<Eigen::Vector3f> samples;
     samples.resize(row_rays);
-    shadeRays(pose.T_W_B, pose.T_W_C, rays_C_.data() + std::size_t(v) * row_rays, int(row_rays),
+    shadeRays(pose.T_W_B, pose.T_W_C, rays_C_.data() + std::size_t(v) * row_rays,
+              backscatter_ ? uv_.data() + std::size_t(v) * row_rays : nullptr, int(row_rays),
               samples.data());
     Eigen::Vector3f* out = sum.data() + std::size_t(v) * width;
     for (int u = 0; u < width; ++u) {

@@ -10,7 +10,10 @@
 //   4  a rotated 4-point grid inside the pixel, equal weights. A ray that hits the
 // seabed is shaded with the lamps, the water and the endmember mixture of the
 // material field (underwater_optics.h, rgb_radiance_table.h); a ray that
-// misses sees black water.
+// misses sees black water. With optics.backscatter, each ray also gets the
+// light the water scatters into it up to its hit (or the maximum range)
+// (water_backscatter.h), from a table over a grid of rays every
+// kBackscatterGridPx pixels, interpolated bilinearly in the image.
 //
 // Exposure: a frame is the average of its sub-frames (rgb_motion_blur.h; one
 // for an instantaneous exposure), each rendered from its own camera and body
@@ -27,6 +30,7 @@
 // the bytes do not depend on scheduling. With one sub-frame and a gain of 1
 // the frame is bit for bit the instantaneous render.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -37,6 +41,7 @@
 #include "pipelines/simulate/render_context.h"
 #include "pipelines/simulate/rgb_radiance_table.h"
 #include "pipelines/simulate/simulation_config.h"
+#include "pipelines/simulate/water_backscatter.h"
 
 namespace hsmap {
 
@@ -66,9 +71,13 @@ class RgbRenderer {
   // Linear RGB (before exposure) of the hit point p_W lit as `lighting`.
   Eigen::Vector3f shade(const Eigen::Vector3d& p_W, const RayHit& hit,
                         const LampLighting& lighting) const;
-  // Casts and shades `count` rays of `rays_C` from T_W_C into `out`.
-  void shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C, int count,
-                 Eigen::Vector3f* out) const;
+  // Casts and shades `count` rays of `rays_C` from T_W_C into `out`; `uv`
+  // holds the rays' image points (for the backscatter; null when it is off).
+  void shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,
+                 const Eigen::Vector2f* uv, int count, Eigen::Vector3f* out) const;
+  // Adds the backscatter of the ray through image point uv whose water path
+  // is range_m long.
+  void addBackscatter(const Eigen::Vector2f& uv, double range_m, Eigen::Vector3f& linear) const;
   // The anti-aliased linear image (row-major, before exposure) seen from
   // `pose`, added to `sum` when `accumulate`, else written to it.
   void renderLinear(const Pose& pose, std::vector<Eigen::Vector3f>& sum, bool accumulate) const;
@@ -78,6 +87,14 @@ class RgbRenderer {
   std::vector<Eigen::Vector3d> rays_C_;
   std::vector<Eigen::Vector3d> corner_rays_C_;  // (height + 1) x (width + 1), quincunx only
   std::vector<float> vignetting_;                // per pixel, row-major; empty: none
+  // Backscatter (null when off): the table's rays on a grid over the image,
+  // nodes at u = -0.5 + i * width / (grid_u_ - 1) (and v alike), row-major;
+  // the image point of every ray of rays_C_ and corner_rays_C_.
+  static constexpr int kBackscatterGridPx = 16;
+  std::unique_ptr<WaterBackscatterTable> backscatter_;
+  int grid_u_ = 0, grid_v_ = 0;
+  std::vector<Eigen::Vector2f> uv_;
+  std::vector<Eigen::Vector2f> corner_uv_;
 };
 
 }  // namespace hsmap

@@ -261,6 +261,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   context.turbidity = config.optics.turbidity;
   context.shadows = config.optics.shadows;
   context.nominal_altitude_m = motion_config.altitude_m;
+  context.backscatter = config.optics.backscatter;
+  context.T_B_C = toSe3(config.calibration.T_B_C);
+  context.T_C_U = toSe3(config.calibration.T_C_U);
   summary.scene_triangles = scene.triangles.size();
   writePly(partial / "truth" / "scene.ply", PlyMesh{scene.vertices, {}, scene.triangles, {}});
   scene_stage.stop();
@@ -443,6 +446,9 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
       calibration.water_attenuation_per_m.push_back(
           waterAttenuationPerM(nm, config.optics.turbidity));
     }
+    // The contract's additive backscatter(lambda), at nadir at the nominal
+    // altitude (uhi_renderer.h); absent (zeros) without backscatter.
+    calibration.backscatter_dn = uhi.nominalBackscatterDn();
     writeTruthCalibration(partial / "truth" / "calibration.yaml", calibration);
   }
   ins_stage.stop();

@@ -233,6 +233,16 @@ void validateSimulationConfig(const SimulationConfig& config) {
           "optics.turbidity", "a factor in [0, 20]");
   require(config.optics.lamp_power > 0.0, "optics.lamp_power", "a value > 0");
   require(config.optics.lamp_beam_exponent >= 0.0, "optics.lamp_beam_exponent", ">= 0");
+  const WaterBackscatterConfig& backscatter = config.optics.backscatter;
+  if (backscatter.enabled) {
+    require(backscatter.phase_g >= 0.0 && backscatter.phase_g <= 0.99, "optics.backscatter.phase_g",
+            "an asymmetry in [0, 0.99]");
+    require(backscatter.near_m >= 0.0 && backscatter.near_m < backscatter.max_range_m &&
+                backscatter.max_range_m <= 100.0,
+            "optics.backscatter.near_m/max_range_m", "0 <= near_m < max_range_m <= 100 m");
+    require(backscatter.steps >= 8 && backscatter.steps <= 100000, "optics.backscatter.steps",
+            "an integer in [8, 100000]");
+  }
   require(config.truth.ortho_pixel_m >= 0.002 && config.truth.ortho_pixel_m <= 1.0,
           "truth.ortho_pixel_m", "a pixel size in [0.002, 1] m");
 }

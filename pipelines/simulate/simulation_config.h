@@ -28,6 +28,7 @@
 #include "pipelines/simulate/rgb_auto_gain.h"
 #include "pipelines/simulate/rgb_frame_writer.h"
 #include "pipelines/simulate/rgb_vignetting.h"
+#include "pipelines/simulate/water_backscatter.h"
 #include "pipelines/simulate/motion/vehicle_motion_config.h"
 #include "pipelines/simulate/scene/terrain_preset.h"
 
@@ -107,6 +108,8 @@ struct SimulatedOpticsConfig {
   double lamp_forward_m = 0.3;      // ahead of the RGB camera
   double lamp_beam_exponent = 2.0;  // intensity ~ cos^n of the angle off the lamp axis
   bool shadows = true;              // cast shadow rays towards the lamps
+  WaterBackscatterConfig backscatter;  // light scattered into the cameras (water_backscatter.h);
+                                       // off by default
 };
 
 struct SimulatedTruthConfig {

@@ -257,11 +257,27 @@ void readIns(const StrictYamlMap& root, SimulationConfig& config) {
   n.attitude = boolean(ins, "attitude", n.attitude);
 }
 
+// optics.backscatter: present means on; every key has a default.
+WaterBackscatterConfig readBackscatter(const StrictYamlMap& optics) {
+  const StrictYamlMap map = optics.map("backscatter", {"phase_g", "near_m", "max_range_m", "steps"});
+  WaterBackscatterConfig backscatter;
+  backscatter.enabled = true;
+  backscatter.phase_g = map.numberInRange("phase_g", 0.0, 0.99, backscatter.phase_g);
+  backscatter.near_m = map.numberInRange("near_m", 0.0, 1.0, backscatter.near_m);
+  backscatter.max_range_m = map.numberInRange("max_range_m", 0.1, 100.0, backscatter.max_range_m);
+  if (backscatter.max_range_m <= backscatter.near_m) map.fail("max_range_m", "expected more than near_m");
+  if (map.has("steps")) {
+    backscatter.steps = map.positiveIntegerUpTo("steps", 100000);
+    if (backscatter.steps < 8) map.fail("steps", "expected an integer in [8, 100000]");
+  }
+  return backscatter;
+}
+
 void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("optics")) return;
   const StrictYamlMap optics =
       root.map("optics", {"turbidity", "lamp_power", "lamp_separation_m", "lamp_forward_m",
-                          "lamp_beam_exponent", "shadows"});
+                          "lamp_beam_exponent", "shadows", "backscatter"});
   SimulatedOpticsConfig& o = config.optics;
   o.turbidity = nonNegative(optics, "turbidity", o.turbidity);
   o.lamp_power = optics.positiveNumber("lamp_power", o.lamp_power);
@@ -269,6 +285,7 @@ void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
   o.lamp_forward_m = optics.number("lamp_forward_m", o.lamp_forward_m);
   o.lamp_beam_exponent = nonNegative(optics, "lamp_beam_exponent", o.lamp_beam_exponent);
   o.shadows = boolean(optics, "shadows", o.shadows);
+  if (optics.has("backscatter")) o.backscatter = readBackscatter(optics);
 }
 
 }  // namespace

@@ -71,6 +71,51 @@ UhiRenderer::UhiRenderer(const RenderContext& context, const SimulatedUhiConfig&
     throw std::invalid_argument("optics: the lamps do not light the seabed below the UHI");
   }
   gain_ = 60000.0 / brightest;
+
+  if (context.backscatter.enabled) {
+    grid_ = (config.camera.samples + kBackscatterGridSamples - 1) / kBackscatterGridSamples + 1;
+    std::vector<Eigen::Vector3d> grid_rays_U;
+    for (int i = 0; i < grid_; ++i) {
+      grid_rays_U.push_back(rayThrough(-0.5 + double(i) * config.camera.samples / (grid_ - 1), 0.0));
+    }
+    // Per band: pi I_b b_b, so that gain_ / pi times the table is the DN.
+    BackscatterSpectrum spectrum;
+    spectrum.weight = Eigen::MatrixXd::Zero(bands, bands);
+    for (int b = 0; b < bands; ++b) {
+      spectrum.attenuation_per_m.push_back(double(attenuation_[b]));
+      spectrum.weight(b, b) =
+          M_PI * double(lamp_[b]) * waterScatteringPerM(wavelengths_nm_[std::size_t(b)], context.turbidity);
+    }
+    backscatter_ = std::make_unique<WaterBackscatterTable>(
+        context.backscatter, context.lamps->backscatterLamps(context.T_B_C * context.T_C_U),
+        grid_rays_U, spectrum);
+  }
+}
+
+void UhiRenderer::addBackscatter(double u, double range_m, float weight, float* out) const {
+  const double f = (u + 0.5) * (grid_ - 1) / config_.camera.samples;
+  const int i = std::clamp(int(std::floor(f)), 0, grid_ - 2);
+  const float t = float(std::clamp(f - i, 0.0, 1.0));
+  backscatter_->accumulate(i, range_m, weight * (1.0f - t), out);
+  backscatter_->accumulate(i + 1, range_m, weight * t, out);
+}
+
+Eigen::VectorXf UhiRenderer::backscatterDn(double u, double range_m) const {
+  Eigen::VectorXf dn = Eigen::VectorXf::Zero(Eigen::Index(wavelengths_nm_.size()));
+  if (backscatter_) addBackscatter(u, range_m, float(gain_ / M_PI), dn.data());
+  return dn;
+}
+
+std::vector<double> UhiRenderer::nominalBackscatterDn() const {
+  if (!backscatter_) return {};
+  // The body level (T_W_B = identity): the seabed plane z_B = z of the RGB
+  // camera + altitude; the principal ray from the UHI's centre to it.
+  const SE3d T_B_U = context_.T_B_C * context_.T_C_U;
+  const Eigen::Vector3d ray_B = T_B_U.q * Eigen::Vector3d(0.0, 0.0, 1.0);
+  const double seabed_z_B = context_.T_B_C.t.z() + context_.nominal_altitude_m;
+  const double range = (seabed_z_B - T_B_U.t.z()) / ray_B.z();
+  const Eigen::VectorXf dn = backscatterDn(config_.camera.cx, range);
+  return std::vector<double>(dn.data(), dn.data() + dn.size());
 }
 
 std::vector<double> UhiRenderer::lampResponseDn() const {
@@ -141,6 +186,23 @@ void UhiRenderer::render(const SE3d& T_W_B, const SE3d& T_W_U, std::int64_t line
         radiance += (endmembers_ * w[l]).array() * (-attenuation_ * mean_path).exp();
       }
       radiance *= lamp_ * float(gain_ / (M_PI * rays_per_pixel_));
+      if (backscatter_) {
+        // At the mean range of the rays that hit; the others see the water
+        // column to the maximum range.
+        double range_sum = 0.0;
+        int hit_count = 0;
+        for (int r = 0; r < rays_per_pixel_; ++r) {
+          if (!hits[base + r].hit()) continue;
+          range_sum += hits[base + r].distance;
+          ++hit_count;
+        }
+        const float scale = float(gain_ / M_PI) / float(rays_per_pixel_);
+        if (hit_count > 0) addBackscatter(s, range_sum / hit_count, scale * float(hit_count), radiance.data());
+        if (hit_count < rays_per_pixel_) {
+          addBackscatter(s, backscatter_->maxRange(), scale * float(rays_per_pixel_ - hit_count),
+                         radiance.data());
+        }
+      }
       for (int b = 0; b < bands; ++b) {
         const float dn = radiance[b];
         const float sigma = std::sqrt(float(config_.read_noise_dn * config_.read_noise_dn) +

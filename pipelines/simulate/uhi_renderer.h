@@ -15,7 +15,18 @@
 // exposure (a flat surface of `exposure_reflectance` on the axis at the
 // nominal altitude reaches 60000 DN in its brightest band), given shot and
 // read noise and clipped to [0, 65535]. A ray that misses sees black water.
+//
+// With optics.backscatter, each pixel also gets the light the water scatters
+// into it (water_backscatter.h), before noise:
+//   DN_bs,b = gain * I_b * b_b * integral(...) = pi K_b / P * L_bs,b / I_b,
+// i.e. pi K(lambda) times the integral of sum_l B/r_l^2 exp(-c (r_l + s))
+// beta(psi_l) ds with beta = b p, K the contract's lamp response
+// (lampResponseDn) and P the lamp power (K holds one P). It is looked up at the mean
+// range of the pixel's rays that hit (the maximum range for those that miss)
+// in a table over the rays of every kBackscatterGridSamples-th sample along
+// the line (the line's central ray across it), interpolated linearly.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,6 +34,7 @@
 #include "core/geometry/se3.h"
 #include "pipelines/simulate/render_context.h"
 #include "pipelines/simulate/simulation_config.h"
+#include "pipelines/simulate/water_backscatter.h"
 
 namespace hsmap {
 
@@ -48,6 +60,16 @@ class UhiRenderer {
   // factor render() multiplies each lamp's light by (before noise).
   std::vector<double> lampResponseDn() const;
 
+  // The contract's constant backscatter(lambda) as truth/calibration.yaml's
+  // backscatter_dn states it: per band, the backscatter DN (no noise) of the
+  // ray through the principal point (cx), with the body level over a flat
+  // seabed at the nominal altitude below the RGB camera, up to the seabed.
+  // Empty when optics.backscatter is off.
+  std::vector<double> nominalBackscatterDn() const;
+  // The backscatter DN of every band for the ray of line position u (pixels)
+  // over a water path of range_m (no noise; zeros when off).
+  Eigen::VectorXf backscatterDn(double u, double range_m) const;
+
  private:
   RenderContext context_;
   SimulatedUhiConfig config_;
@@ -60,6 +82,13 @@ class UhiRenderer {
   int rays_per_pixel_ = 1;
   std::vector<Eigen::Vector3d> rays_U_;        // rays_per_pixel_ per sample
   std::vector<Eigen::Vector3d> centre_rays_U_;  // one per sample
+  // Backscatter (null when off): rays at u = -0.5 + i * samples / (grid_ - 1).
+  static constexpr int kBackscatterGridSamples = 8;
+  std::unique_ptr<WaterBackscatterTable> backscatter_;
+  int grid_ = 0;
+  // Adds weight * the backscatter (before the DN scale) of line position u
+  // over range_m to out (bands values).
+  void addBackscatter(double u, double range_m, float weight, float* out) const;
 };
 
 // Band centres: `bands` values spread evenly over [min, max] nm.

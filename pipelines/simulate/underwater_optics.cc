@@ -22,6 +22,11 @@ double waterAttenuationPerM(double wavelength_nm, double turbidity) {
   return water + turbidity * (dissolved + particles);
 }
 
+double waterScatteringPerM(double wavelength_nm, double turbidity) {
+  // The particle term of waterAttenuationPerM.
+  return turbidity * (0.08 * (550.0 / wavelength_nm));
+}
+
 double lampSpectrum(double wavelength_nm) {
   const double blue_emitter = 0.9 * gaussian(wavelength_nm, 452.0, 11.0);
   const double phosphor = 0.75 * gaussian(wavelength_nm, 575.0, 55.0);
@@ -68,6 +73,18 @@ LampRig::Posed LampRig::posed(const SE3d& T_W_B) const {
   Posed lamps;
   for (int l = 0; l < LampLighting::kMaxLamps; ++l) lamps.lamp_W[l] = T_W_B * p_B_[l];
   lamps.axis_W = T_W_B.q * axis_B_;
+  return lamps;
+}
+
+BackscatterLamps LampRig::backscatterLamps(const SE3d& T_B_X) const {
+  const SE3d T_X_B = T_B_X.inverse();
+  BackscatterLamps lamps;
+  lamps.power = power_;
+  lamps.beam_exponent = beam_exponent_;
+  for (const Eigen::Vector3d& p_B : p_B_) {
+    lamps.p_X.push_back(T_X_B * p_B);
+    lamps.axis_X.push_back((T_X_B.q * axis_B_).normalized());
+  }
   return lamps;
 }
 

@@ -8,13 +8,17 @@
 // with g_l = power * cos^n(angle off the lamp axis) * cos(incidence) / r_l^2
 // (zero when the point faces away from the lamp or, with shadows on, when the
 // scene blocks the lamp), I the lamp spectrum and c the water's beam
-// attenuation (Beer-Lambert along both paths). Scattered light (backscatter,
-// forward scattering) is not modelled: the water only attenuates.
+// attenuation (Beer-Lambert along both paths). Light that the water scatters
+// into the camera on the way (backscatter) is added by water_backscatter.h
+// when optics.backscatter is on; forward scattering is not modelled.
 //
 // The spectra are smooth analytic curves over 350-1000 nm:
 //   waterAttenuationPerM: clear-water absorption rising steeply into the red
 //     and near infrared, plus coloured dissolved matter (high in the blue) and
 //     particles (slowly decreasing), the last two scaled by `turbidity`;
+//   waterScatteringPerM: the particles' part of c, b(lambda) <= c(lambda), the
+//     light they scatter rather than absorb (backscatter's source; pure
+//     water's molecular scattering, below 0.004 /m, is neglected);
 //   lampSpectrum: a white LED (blue emitter near 450 nm and a broad phosphor
 //     band near 570 nm) extended by a halogen-like tail into the infrared, so
 //     that every UHI band receives light;
@@ -33,6 +37,7 @@
 namespace hsmap {
 
 double waterAttenuationPerM(double wavelength_nm, double turbidity);
+double waterScatteringPerM(double wavelength_nm, double turbidity);
 double lampSpectrum(double wavelength_nm);
 double rgbResponse(int channel, double wavelength_nm);
 
@@ -60,6 +65,7 @@ class LampRig {
   }
   const Eigen::Vector3d& axis_B() const { return axis_B_; }
   double power() const { return power_; }
+  double beamExponent() const { return beam_exponent_; }
   // The lamps as survey.yaml's `lights.lamps` states them (the data
   // contract): centres and beam axes in the RGB camera frame C.
   LightsConfig lightsInCamera(const RigidTransformConfig& T_B_C) const;
@@ -79,6 +85,9 @@ class LampRig {
                                const Eigen::Vector3d& n_W,
                                std::array<Ray, LampLighting::kMaxLamps>* shadow_rays) const;
   Posed posed(const SE3d& T_W_B) const;
+  // The lamps in the frame X of a camera fixed to the body at T_B_X, for the
+  // backscatter integral (water_backscatter.h).
+  BackscatterLamps backscatterLamps(const SE3d& T_B_X) const;
   // Lighting of a flat seabed `altitude_m` straight below the RGB camera with
   // the body level: the reference geometry of the cameras' fixed exposure.
   LampLighting nominalLighting(double altitude_m) const;
