@@ -4,6 +4,7 @@
 
 #include "core/io/atomic_file.h"
 #include "core/survey/calibration_yaml.h"
+#include "core/survey/camera_sigma.h"
 #include "core/survey/results_yaml.h"
 #include "core/survey/strict_yaml_map.h"
 #include "core/util/input_error.h"
@@ -12,7 +13,9 @@
 namespace hsmap {
 namespace {
 
-// Same bound as survey.yaml's guess (survey_config.h): an hour either way.
+// Same bounds as survey.yaml (survey_config.h, calibration_yaml.cc): an hour
+// either way for d, 1e6 px for a focal length or centre.
+constexpr double kMaxFocalPx = 1e6;
 constexpr double kMaxTimeOffsetS = 3600.0;
 
 RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node& document) {
@@ -23,7 +26,7 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
   }
   const StrictYamlMap root(file, document, "", 1,
                            {"format", "variant", "T_C_U", "time_offset_s", "time_offset_sigma_s",
-                            "warnings"});
+                            "uhi_camera", "warnings"});
   const std::string format = root.text("format");
   if (format != RunCalibration::kFormat) {
     root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
@@ -43,6 +46,16 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
       root.numberInRange("time_offset_s", -kMaxTimeOffsetS, kMaxTimeOffsetS);
   calibration.time_offset_sigma_s =
       readNullableSigma(root, document["time_offset_sigma_s"], "time_offset_sigma_s");
+  if (root.has("uhi_camera")) {
+    const StrictYamlMap camera = root.map("uhi_camera", {"f", "cx", "distortion", "sigma"});
+    UhiCameraEstimate estimate;
+    estimate.f = camera.positiveNumberUpTo("f", kMaxFocalPx);
+    estimate.cx = camera.numberInRange("cx", -kMaxFocalPx, kMaxFocalPx);
+    const std::vector<double> distortion = camera.numbers("distortion", 2);
+    estimate.distortion = {distortion[0], distortion[1]};
+    estimate.sigma = readPushbroomSigma(camera, "sigma");
+    calibration.uhi_camera = estimate;
+  }
   calibration.warnings = readTextList(root, document["warnings"], "warnings");
   return calibration;
 }
@@ -79,6 +92,20 @@ std::string emitDocument(const RunCalibration& calibration) {
   } else {
     out << YAML::Null;
   }
+  if (calibration.uhi_camera) {
+    const UhiCameraEstimate& camera = *calibration.uhi_camera;
+    out << YAML::Key << "uhi_camera" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "f" << YAML::Value;
+    emitNumber(out, camera.f);
+    out << YAML::Key << "cx" << YAML::Value;
+    emitNumber(out, camera.cx);
+    out << YAML::Key << "distortion" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double k : camera.distortion) emitNumber(out, k);
+    out << YAML::EndSeq;
+    out << YAML::Key << "sigma" << YAML::Value;
+    emitPushbroomSigma(out, camera.sigma);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "warnings" << YAML::Value;
   if (calibration.warnings.empty()) {
     out << YAML::Flow;  // `warnings: []`
@@ -94,6 +121,13 @@ std::string emitDocument(const RunCalibration& calibration) {
 }
 
 }  // namespace
+
+PushbroomParameters UhiCameraEstimate::appliedTo(PushbroomParameters survey_camera) const {
+  survey_camera.f = f;
+  survey_camera.cx = cx;
+  survey_camera.distortion = distortion;
+  return survey_camera;
+}
 
 RunCalibration parseRunCalibration(std::string_view text, const std::filesystem::path& file) {
   return parseDocument(file, parseYamlText(text, file));

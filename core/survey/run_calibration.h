@@ -11,9 +11,13 @@
 //     sigma_translation_m: [sx, sy, sz]  or null
 //   time_offset_s: 0.0148                d: true UHI time = recorded time + d, in [-3600, 3600]
 //   time_offset_sigma_s: 0.0004          or null
+//   uhi_camera: {f: ..., cx: ..., distortion: [k1, k2],
+//                sigma: {f: ..., cx: ..., distortion: [s1, s2]}}
+//                                        optional: present when the run estimated the UHI's
+//                                        intrinsics (a sigma of 0: held at survey.yaml's)
 //   warnings: []                         texts, e.g. a component the survey cannot determine
 //
-// A sigma that was not estimated is `null`; every key is required (a sigma
+// A sigma that was not estimated is `null`; every key but uhi_camera is required (a sigma
 // may be null, not absent), so a truncated file is never read as "not
 // estimated". Sigmas are finite and >= 0. Rotations follow survey_config.h
 // (norm within 1e-3 of 1, normalised; one unit to double precision is kept
@@ -26,15 +30,29 @@
 // would refuse.
 
 #include <Eigen/Core>
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/survey/camera_sigma.h"
 #include "core/survey/survey_config.h"
 
 namespace hsmap {
+
+// The UHI intrinsics a run estimated (survey.yaml's uhi.camera keys without
+// `model` and `samples`, which the survey states) and their 1-sigma.
+struct UhiCameraEstimate {
+  double f = 0.0;
+  double cx = 0.0;
+  std::array<double, 2> distortion{0.0, 0.0};
+  PushbroomSigma sigma;
+
+  // `survey_camera` (its model and samples) with these intrinsics.
+  PushbroomParameters appliedTo(PushbroomParameters survey_camera) const;
+};
 
 struct RunCalibration {
   static constexpr const char* kFormat = "hsmap-calibration/1";
@@ -44,6 +62,7 @@ struct RunCalibration {
   std::optional<Eigen::Vector3d> sigma_translation_m;  // along C's x, y, z
   double time_offset_s = 0.0;                          // d
   std::optional<double> time_offset_sigma_s;
+  std::optional<UhiCameraEstimate> uhi_camera;  // nullopt: survey.yaml's uhi.camera was used
   std::vector<std::string> warnings;
 };
 

@@ -139,25 +139,23 @@ void checkLampResponseBandCount(const Survey& survey) {
                        "; expected one row per UHI band");
 }
 
-// survey.yaml asks for self-calibrated intrinsics (a camera_sigma > 0) that
-// this version does not estimate: said once, where the survey's warnings are.
-std::optional<std::string> intrinsicsHeldFixedWarning(const SurveyConfig& config) {
-  std::vector<std::string> cameras;
+// survey.yaml asks for self-calibrated intrinsics (a camera_sigma > 0):
+// said once, where the survey's warnings are, what each camera gets. The
+// UHI's are estimated by the `joint` variant only (docs/JOINT.md); the RGB
+// camera's are held fixed by this version.
+std::vector<std::string> intrinsicsWarnings(const SurveyConfig& config) {
+  std::vector<std::string> warnings;
   if (config.rgb.camera_sigma && config.rgb.camera_sigma->asksForCalibration()) {
-    cameras.push_back("rgb");
+    warnings.push_back(
+        "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics), but this version of hsmap "
+        "holds the intrinsics fixed: rgb.camera used as given");
   }
   if (config.uhi.camera_sigma && config.uhi.camera_sigma->asksForCalibration()) {
-    cameras.push_back("uhi");
+    warnings.push_back(
+        "survey.yaml gives uhi.camera_sigma (self-calibrated intrinsics): the joint variant estimates "
+        "them; the other variants use uhi.camera as given");
   }
-  if (cameras.empty()) return std::nullopt;
-  std::string sigmas, held;
-  for (std::size_t i = 0; i < cameras.size(); ++i) {
-    sigmas += (i > 0 ? " and " : "") + cameras[i] + ".camera_sigma";
-    held += (i > 0 ? " and " : "") + cameras[i] + ".camera";
-  }
-  return "survey.yaml gives " + sigmas +
-         " (self-calibrated intrinsics), but this version of hsmap holds the intrinsics fixed: " +
-         held + " used as given";
+  return warnings;
 }
 
 // Checks that [first, last] of a stream overlaps the INS span; records a
@@ -257,7 +255,7 @@ Survey loadSurvey(const std::filesystem::path& folder) {
   survey.ins_path = folder / config.ins.file;
   if (config.lights) survey.lamp_response_path = folder / config.lights->response;
   checkReferencedFiles(survey);
-  if (auto warning = intrinsicsHeldFixedWarning(config)) survey.warnings.push_back(*warning);
+  for (std::string& warning : intrinsicsWarnings(config)) survey.warnings.push_back(std::move(warning));
 
   survey.rgb = openRgb(survey);
 

@@ -117,6 +117,24 @@ RunCalibration jointCalibration(const JointResult& joint, int round,
                                    " is weakly determined by this survey (its 1-sigma is more "
                                    "than half the prior's); it stays close to survey.yaml's guess");
   }
+  if (joint.uhi_intrinsics) {
+    const auto& k = *joint.uhi_intrinsics;
+    UhiCameraEstimate camera;
+    camera.f = k[0];
+    camera.cx = k[1];
+    camera.distortion = {k[2], k[3]};
+    if (joint.uhi_intrinsics_sigma) {
+      const auto& sigma = *joint.uhi_intrinsics_sigma;
+      camera.sigma.f = sigma[0];
+      camera.sigma.cx = sigma[1];
+      camera.sigma.distortion = {sigma[2], sigma[3]};
+    } else {
+      calibration.warnings.push_back("no covariance for uhi_camera: its sigmas are written as 0");
+    }
+    calibration.uhi_camera = camera;
+    calibration.warnings.push_back("uhi_camera estimated by the joint problem with T_C_U and d");
+    for (const std::string& warning : joint.inseparable_intrinsics) calibration.warnings.push_back(warning);
+  }
   if (placement) addMapScaleUncertainty(calibration, *placement);
   for (const std::string& warning : joint.warnings) calibration.warnings.push_back(warning);
   return calibration;

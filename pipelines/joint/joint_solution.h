@@ -59,6 +59,10 @@ GeorefResult withJointMap(GeorefResult posed, const JointResult& joint);
 // scale uncertainty (addMapScaleUncertainty, map_placement.h): the joint
 // problem's own covariance holds the tie points' millimetres, which tie
 // T_C_U to the map, not to the truth.
+//
+// When the solution estimated the UHI intrinsics, `uhi_camera` (survey.yaml's
+// camera) names the parameters: calibration.yaml gets uhi_camera with their
+// 1-sigma, and a warning for each the survey cannot separate.
 RunCalibration jointCalibration(const JointResult& joint, int round,
                                 const std::optional<MapPlacement>& placement = std::nullopt);
 

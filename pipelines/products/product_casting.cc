@@ -10,7 +10,8 @@ namespace hsmap {
 
 namespace fs = std::filesystem;
 
-HyperspectralReport castHyperspectralOrtho(const Survey& survey, const std::vector<LinePose>& line_poses,
+HyperspectralReport castHyperspectralOrtho(const Survey& survey, const PushbroomParameters& uhi_camera,
+                                           const std::vector<LinePose>& line_poses,
                                            const MeshRayCaster& mesh, const UtmProjection& projection,
                                            const fs::path& folder, double pixel_m, bool geotiff,
                                            std::ostream& out, std::function<void(const OrthoGrid&)> on_grid) {
@@ -20,19 +21,20 @@ HyperspectralReport castHyperspectralOrtho(const Survey& survey, const std::vect
   products.write_geotiff = geotiff;
   products.on_grid = std::move(on_grid);
   const HyperspectralReport report =
-      writeHyperspectralOrtho(*survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera),
+      writeHyperspectralOrtho(*survey.cube, survey.wavelengths_nm, PushbroomCamera(uhi_camera),
                               line_poses, mesh, projection, folder, products, out);
   out << report.summary();
   return report;
 }
 
-void writePointCloud(const Survey& survey, const std::vector<LinePose>& line_poses, const MeshRayCaster& mesh,
+void writePointCloud(const Survey& survey, const PushbroomParameters& uhi_camera,
+                     const std::vector<LinePose>& line_poses, const MeshRayCaster& mesh,
                      const fs::path& ply, double cell_m, std::ostream& out) {
   if (!survey.cube) throw std::invalid_argument("writePointCloud: the survey's UHI cube is not open");
   HyperspectralPointCloudOptions points;
   points.cell_m = cell_m;
   const HyperspectralPointCloudReport report =
-      writeHyperspectralPointCloud(*survey.cube, survey.wavelengths_nm, PushbroomCamera(survey.config.uhi.camera),
+      writeHyperspectralPointCloud(*survey.cube, survey.wavelengths_nm, PushbroomCamera(uhi_camera),
                                    line_poses, mesh, survey.origin, ply, points, out);
   out << report.summary() << "wrote " << report.ply.string() << "\n";
 }

@@ -23,19 +23,23 @@
 
 namespace hsmap {
 
-// One cast of every scan line of `line_poses` onto `mesh`: the ortho-image
+// One cast of every scan line of `line_poses` onto `mesh` through
+// `uhi_camera` (survey.yaml's, or the run's estimate in calibration.yaml's
+// uhi_camera): the ortho-image
 // at `pixel_m`, its quick-look, ancillary layers and (when `geotiff`) its COG
 // GeoTIFF in `folder`. `on_grid` as HyperspectralOptions::on_grid. The
 // report's summary goes to `out`.
-HyperspectralReport castHyperspectralOrtho(const Survey& survey, const std::vector<LinePose>& line_poses,
+HyperspectralReport castHyperspectralOrtho(const Survey& survey, const PushbroomParameters& uhi_camera,
+                                           const std::vector<LinePose>& line_poses,
                                            const MeshRayCaster& mesh, const UtmProjection& projection,
                                            const std::filesystem::path& folder, double pixel_m, bool geotiff,
                                            std::ostream& out,
                                            std::function<void(const OrthoGrid&)> on_grid = {});
 
-// `ply` (points.ply) from these line poses: the hits binned into cubes of
-// `cell_m` metres.
-void writePointCloud(const Survey& survey, const std::vector<LinePose>& line_poses, const MeshRayCaster& mesh,
+// `ply` (points.ply) from these line poses through `uhi_camera`: the hits
+// binned into cubes of `cell_m` metres.
+void writePointCloud(const Survey& survey, const PushbroomParameters& uhi_camera,
+                     const std::vector<LinePose>& line_poses, const MeshRayCaster& mesh,
                      const std::filesystem::path& ply, double cell_m, std::ostream& out);
 
 // The textured mesh `ply` (cast through `mesh`, built from it) on `grid`:

@@ -79,6 +79,15 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
   inputs.ins_noise = surveyInsNoise(survey, ins, georef_options);
   inputs.rgb_camera = survey.config.rgb.camera;
   inputs.uhi_camera = uhi.camera;
+  // survey.yaml's uhi.camera_sigma: the intrinsics are estimated with T_C_U
+  // and d (every sigma 0 or absent: held as given).
+  if (uhi.camera_sigma) {
+    inputs.uhi_intrinsics_sigma = {uhi.camera_sigma->f, uhi.camera_sigma->cx, uhi.camera_sigma->distortion[0],
+                                   uhi.camera_sigma->distortion[1]};
+  }
+  if (inputs.estimatesUhiIntrinsics()) {
+    out << "joint: uhi.camera_sigma is given: the UHI intrinsics are estimated with T_C_U and d\n";
+  }
   inputs.T_C_U_prior = T_C_U_prior;
   inputs.sigma_rotation_deg = uhi.sigma_rotation_deg;
   inputs.sigma_translation_m = uhi.sigma_translation_m;
@@ -109,7 +118,10 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
   // UHI samples per column = the two focal lengths' ratio (2 on the presets).
   StripTiePointOptions strip_options;
   strip_options.sample_step = std::max(1, int(std::lround(uhi.camera.f / survey.config.rgb.camera.fx)));
-  const PushbroomCamera uhi_camera(uhi.camera);
+  // The UHI camera of the current estimate (survey.yaml's until a round
+  // estimates the intrinsics): the strip's prediction and the scratch casts.
+  PushbroomParameters uhi_current = uhi.camera;
+  auto uhi_camera = std::make_unique<PushbroomCamera>(uhi_current);
   const PinholeRadtanCamera rgb_camera(survey.config.rgb.camera);
 
   // What the stage writes: the sequential start until a round is solved.
@@ -132,7 +144,7 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
       strip.cube = survey.cube.get();
       strip.band_weights = combination.weights;
       strip.band_offset = combination.offset;
-      strip.uhi_camera = &uhi_camera;
+      strip.uhi_camera = uhi_camera.get();
       strip.lines = line_poses;
       strip.mesh = mesh.get();
       strip.frames = &survey.rgb;
@@ -152,7 +164,7 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
     }
     if (!in_strip) {
       out << "joint: casting the scan lines to match the ortho-images\n";
-      castHyperspectralOrtho(survey, line_poses, *mesh, projection, scratch, options.cast_pixel_m, false, out);
+      castHyperspectralOrtho(survey, uhi_current, line_poses, *mesh, projection, scratch, options.cast_pixel_m, false, out);
       RunTiePoints found = collectOrthoTiePoints(scratch, ply, projection, tie_options, out);
       round_ties = std::move(found.tie_points);
       combination = std::move(found.combination);
@@ -209,6 +221,14 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
     for (const auto& [id, p_W] : joint.landmarks_W) map_W.landmark(id).p_F = p_W;
     inputs.T_C_U_start = joint.T_C_U;
     inputs.time_offset_start_s = joint.time_offset_s;
+    if (joint.uhi_intrinsics) {
+      inputs.uhi_intrinsics_start = joint.uhi_intrinsics;
+      const auto& k = *joint.uhi_intrinsics;
+      uhi_current.f = k[0];
+      uhi_current.cx = k[1];
+      uhi_current.distortion = {k[2], k[3]};
+      uhi_camera = std::make_unique<PushbroomCamera>(uhi_current);
+    }
     out << "joint: round " << round << " took " << secondsSince(round_start) << " s\n";
     if (!joint.time_offset_at_bound && rotation_change_deg < 0.005 && translation_change_m < 0.0005 &&
         time_change_s < 0.0002 && trajectory_change_m < 0.0005 && trajectory_change_deg < 0.005) {

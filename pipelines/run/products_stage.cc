@@ -10,6 +10,7 @@
 #include "core/io/results_folder.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/pose_tables.h"
+#include "core/survey/run_calibration.h"
 #include "core/util/stage_timer.h"
 #include "pipelines/products/product_casting.h"
 #include "pipelines/products/stacked_products.h"
@@ -43,6 +44,19 @@ void runProductsStage(const StageContext& context, const ProductsStageOptions& o
   out << "products: mesh read and its BVH built in " << secondsSince(mesh_start) << " s ("
       << ply.triangles.size() << " triangles; read " << read_mesh_s << " s)\n";
   const UtmProjection projection(survey.origin);
+  // The contract file says which UHI camera the run settled on: the joint
+  // stage's estimate when it self-calibrated the intrinsics, else survey.yaml's.
+  PushbroomParameters uhi_camera = survey.config.uhi.camera;
+  const fs::path calibration_yaml = context.run / results_paths::calibration_yaml;
+  if (fs::exists(calibration_yaml)) {
+    const RunCalibration calibration = readRunCalibration(calibration_yaml);
+    if (calibration.uhi_camera) {
+      uhi_camera = calibration.uhi_camera->appliedTo(uhi_camera);
+      out << "products: the UHI camera of " << calibration_yaml.string() << " (f " << uhi_camera.f << ", cx "
+          << uhi_camera.cx << ", distortion [" << uhi_camera.distortion[0] << ", " << uhi_camera.distortion[1]
+          << "])\n";
+    }
+  }
 
   // The RGB ortho-image (on the cast's grid) is rendered alongside the
   // tiles, which wait on the disk; its log follows the cast's.
@@ -54,10 +68,10 @@ void runProductsStage(const StageContext& context, const ProductsStageOptions& o
       return log.str();
     });
   };
-  const HyperspectralReport report = castHyperspectralOrtho(survey, line_poses, mesh, projection, folder,
+  const HyperspectralReport report = castHyperspectralOrtho(survey, uhi_camera, line_poses, mesh, projection, folder,
                                                             options.ortho_pixel_m, options.geotiff, out,
                                                             startRgbOrtho);
-  if (options.points) writePointCloud(survey, line_poses, mesh, folder / "points.ply", options.point_cell_m, out);
+  if (options.points) writePointCloud(survey, uhi_camera, line_poses, mesh, folder / "points.ply", options.point_cell_m, out);
   out << "wrote " << report.ortho_hdr.string();
   for (const fs::path& path : {report.ortho_tif, report.quicklook_png, report.ancillary_hdr}) {
     if (!path.empty()) out << ", " << path.string();

@@ -53,7 +53,7 @@ void runRefineStage(const StageContext& context, const RefineStageOptions& optio
     for (int round = 1; round <= options.rounds; ++round) {
       const SE3d T_C_U_lines = toSe3(calibration.T_C_U);
       out << "refine: round " << round << " of " << options.rounds << ": casting the scan lines\n";
-      castHyperspectralOrtho(survey, line_poses, mesh, projection, cast, options.cast_pixel_m, false, out);
+      castHyperspectralOrtho(survey, survey.config.uhi.camera, line_poses, mesh, projection, cast, options.cast_pixel_m, false, out);
       const ExtrinsicRefinementResult result =
           refineExtrinsicFromOrthoImages(cast, ply, line_poses, T_C_U_lines, survey.config.uhi.camera, prior,
                                          projection, ExtrinsicRefinementOptions{}, out);

@@ -54,6 +54,45 @@ TEST_F(RunCalibrationTest, RoundTripsBitExactly) {
   EXPECT_EQ(TempFolder::read(folder_ / "again.yaml"), TempFolder::read(path_));
 }
 
+TEST_F(RunCalibrationTest, TheEstimatedUhiCameraRoundTripsAndIsOptional) {
+  RunCalibration calibration = exampleCalibration();
+  UhiCameraEstimate camera;
+  camera.f = 1514.917;
+  camera.cx = 957.31;
+  camera.distortion = {0.0213, -0.004};
+  camera.sigma.f = 0.83;
+  camera.sigma.cx = 0.11;
+  camera.sigma.distortion = {0.0007, 0.0};  // k2 held
+  calibration.uhi_camera = camera;
+  writeRunCalibration(path_, calibration);
+  EXPECT_NE(TempFolder::read(path_).find("uhi_camera: {f: 1514.917, cx: 957.31, distortion: [0.0213, -0.004], "
+                                         "sigma: {f: 0.83, cx: 0.11, distortion: [7e-04, 0]}}\n"),
+            std::string::npos)
+      << TempFolder::read(path_);
+  const RunCalibration read = readRunCalibration(path_);
+  ASSERT_TRUE(read.uhi_camera);
+  EXPECT_EQ(read.uhi_camera->f, camera.f);
+  EXPECT_EQ(read.uhi_camera->cx, camera.cx);
+  EXPECT_EQ(read.uhi_camera->distortion, camera.distortion);
+  EXPECT_EQ(read.uhi_camera->sigma.f, camera.sigma.f);
+  EXPECT_EQ(read.uhi_camera->sigma.cx, camera.sigma.cx);
+  EXPECT_EQ(read.uhi_camera->sigma.distortion, camera.sigma.distortion);
+  PushbroomParameters survey_camera;
+  survey_camera.samples = 1920;
+  const PushbroomParameters applied = read.uhi_camera->appliedTo(survey_camera);
+  EXPECT_EQ(applied.samples, 1920);
+  EXPECT_EQ(applied.f, camera.f);
+  // Without it (not estimated), none is read.
+  writeRunCalibration(path_, exampleCalibration());
+  EXPECT_FALSE(readRunCalibration(path_).uhi_camera);
+  // A bad value is named by its key.
+  calibration.uhi_camera->f = 1500.0;
+  writeRunCalibration(path_, calibration);
+  testing::replaceInFile(path_, "f: 1500,", "f: -3,");
+  expectInputError([&] { readRunCalibration(path_); }, path_,
+                   "line 11, key uhi_camera.f: expected a number > 0, got -3");
+}
+
 TEST_F(RunCalibrationTest, TheWrittenFileLooksAsDocumented) {
   RunCalibration calibration = exampleCalibration();
   calibration.variant = "sequential";

@@ -28,9 +28,12 @@ std::string v3SurveyYamlForTheSample() {
   return text.replace(at, 13, "samples: 64");
 }
 
-const std::string kHeldFixedWarning =
-    "survey.yaml gives rgb.camera_sigma and uhi.camera_sigma (self-calibrated intrinsics), but "
-    "this version of hsmap holds the intrinsics fixed: rgb.camera and uhi.camera used as given";
+const std::string kRgbHeldFixedWarning =
+    "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics), but this version of hsmap "
+    "holds the intrinsics fixed: rgb.camera used as given";
+const std::string kUhiJointWarning =
+    "survey.yaml gives uhi.camera_sigma (self-calibrated intrinsics): the joint variant estimates "
+    "them; the other variants use uhi.camera as given";
 
 class SurveyV3LoadTest : public ::testing::Test {
  protected:
@@ -58,7 +61,7 @@ TEST_F(SurveyV3LoadTest, TheContractExampleLoads) {
   EXPECT_EQ(survey.lamp_response_dn.back(), 2700.0);
   ASSERT_TRUE(survey.config.rgb.camera_sigma.has_value());
   ASSERT_TRUE(survey.config.uhi.camera_sigma.has_value());
-  EXPECT_EQ(survey.warnings, (std::vector<std::string>{kHeldFixedWarning}));
+  EXPECT_EQ(survey.warnings, (std::vector<std::string>{kRgbHeldFixedWarning, kUhiJointWarning}));
 }
 
 TEST_F(SurveyV3LoadTest, TheWarningNamesOnlyTheCamerasWhoseSigmaAsksForCalibration) {
@@ -66,10 +69,7 @@ TEST_F(SurveyV3LoadTest, TheWarningNamesOnlyTheCamerasWhoseSigmaAsksForCalibrati
                 "  camera_sigma: {fx: 8, fy: 8, cx: 4, cy: 4, distortion: [0.02, 0.02, 0.001, "
                 "0.001, 0.02]}\n",
                 "  camera_sigma: {fx: 0}\n");
-  EXPECT_EQ(loadSurvey(survey_).warnings,
-            (std::vector<std::string>{
-                "survey.yaml gives uhi.camera_sigma (self-calibrated intrinsics), but this "
-                "version of hsmap holds the intrinsics fixed: uhi.camera used as given"}));
+  EXPECT_EQ(loadSurvey(survey_).warnings, (std::vector<std::string>{kUhiJointWarning}));
   replaceInFile(yaml_, "  camera_sigma: {f: 15, cx: 3, distortion: [0.02, 0.01]}\n", "");
   EXPECT_TRUE(loadSurvey(survey_).warnings.empty());
 }
@@ -123,13 +123,13 @@ TEST_F(SurveyV3LoadTest, InspectPrintsTheSigmasTheLightsAndTheWarning) {
             "\n       camera_sigma: fx 8.00, fy 8.00, cx 4.00, cy 4.00, distortion [0.02, 0.02, "
             "0.001, 0.001, 0.02] (intrinsics held fixed in this version)\n  UHI: ",
         std::string(" s\n       camera_sigma: f 15.00, cx 3.00, distortion [0.02, 0.01] "
-                    "(intrinsics held fixed in this version)\n  INS: "),
+                    "(intrinsics estimated by the joint variant)\n  INS: "),
         "  INS: position and attitude\n  lights: 2 lamps; response " + response_.string() +
             ": 16 bands, DN 1200.0 - 2700.0\n"
             "    lamp 0: position [-0.300, -0.300, 0.000] m, axis [0.000, 0.000, 1.000] (in C)\n"
             "    lamp 1: position [0.300, -0.300, 0.000] m, axis [0.000, 0.000, 1.000] (in C)\n"
             "streams:\n",
-        "warnings:\n  - " + kHeldFixedWarning + "\n"}) {
+        "warnings:\n  - " + kRgbHeldFixedWarning + "\n  - " + kUhiJointWarning + "\n"}) {
     EXPECT_NE(printed.find(expected), std::string::npos) << "missing '" << expected << "' in\n"
                                                          << printed;
   }

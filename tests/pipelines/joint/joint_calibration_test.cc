@@ -2,6 +2,9 @@
 // 1-sigma carries what the map's scale uncertainty moves it by, and says so.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include <cmath>
 
 #include "core/geometry/so3.h"
@@ -44,6 +47,23 @@ TEST(JointCalibration, TranslationSigmaAddsTheMapScaleUncertaintyAlongTheLeverAr
 
 // A similarity moves the spline exactly (pose by pose), the landmarks, and
 // the lever arm by its scale: the tie points measured it in the map's units.
+TEST(JointCalibration, EstimatedUhiIntrinsicsGoToUhiCameraWithTheirSigmasAndWarnings) {
+  JointResult joint = solvedLeverArm();
+  EXPECT_FALSE(jointCalibration(joint, 2).uhi_camera);
+  joint.uhi_intrinsics = std::array<double, 4>{1515.2, 957.1, 0.021, -0.004};
+  joint.uhi_intrinsics_sigma = std::array<double, 4>{0.8, 0.1, 0.0007, 0.0};
+  joint.inseparable_intrinsics = {"uhi_camera.cx cannot be separated from T_C_U's rotation about U's y"};
+  const RunCalibration calibration = jointCalibration(joint, 2);
+  ASSERT_TRUE(calibration.uhi_camera);
+  EXPECT_EQ(calibration.uhi_camera->f, 1515.2);
+  EXPECT_EQ(calibration.uhi_camera->cx, 957.1);
+  EXPECT_EQ(calibration.uhi_camera->distortion, (std::array<double, 2>{0.021, -0.004}));
+  EXPECT_EQ(calibration.uhi_camera->sigma.f, 0.8);
+  EXPECT_EQ(calibration.uhi_camera->sigma.distortion, (std::array<double, 2>{0.0007, 0.0}));
+  EXPECT_NE(std::find(calibration.warnings.begin(), calibration.warnings.end(), joint.inseparable_intrinsics[0]),
+            calibration.warnings.end());
+}
+
 TEST(JointSurfaceFrame, ASimilarityMovesTheSplinePoseByPoseAndScalesTheLeverArm) {
   std::vector<SE3d> control_points;
   for (int i = 0; i < 8; ++i) {
