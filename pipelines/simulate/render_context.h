@@ -7,6 +7,7 @@
 #include "core/raycast/mesh_ray_caster.h"
 #include "pipelines/simulate/scene/material_field.h"
 #include "pipelines/simulate/scene/seabed_scene.h"
+#include "pipelines/simulate/rgb_marine_snow.h"
 #include "pipelines/simulate/underwater_optics.h"
 #include "pipelines/simulate/water_backscatter.h"
 
@@ -24,6 +25,7 @@ struct RenderContext {
   // Light scattered by the water into the cameras (off by default), and the
   // cameras on the vehicle, which place the lamps relative to each camera.
   WaterBackscatterConfig backscatter;
+  MarineSnowConfig marine_snow;  // particles in front of the RGB camera (off by default)
   SE3d T_B_C;
   SE3d T_C_U;
 

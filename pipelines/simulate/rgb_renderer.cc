@@ -120,6 +120,61 @@ Eigen::Vector3f RgbRenderer::shade(const Eigen::Vector3d& p_W, const RayHit& hit
   return linear;
 }
 
+void RgbRenderer::drawMarineSnow(const std::vector<SnowParticle>& particles, const Pose& pose,
+                                 std::vector<Eigen::Vector3f>& linear) const {
+  const MarineSnowConfig& snow = context_.marine_snow;
+  const PinholeRadtanCamera camera(config_.camera);
+  const int width = config_.camera.width;
+  const int height = config_.camera.height;
+  const double f = config_.camera.fx;
+  const SE3d T_C_W = pose.T_W_C.inverse();
+  const LampRig::Posed lamps = context_.lamps->posed(pose.T_W_B);
+  const double power = context_.lamps->power();
+  const double beam_exponent = context_.lamps->beamExponent();
+  for (const SnowParticle& particle : particles) {
+    const Eigen::Vector3d p_C = T_C_W * particle.p_W;
+    const double z = p_C.z();
+    if (z <= 0.01) continue;
+    const double d = p_C.norm();
+    const Eigen::Vector3d to_particle = (particle.p_W - pose.T_W_C.t) / d;
+    if (context_.caster->occluded(Ray{pose.T_W_C.t, to_particle, 0.0, d})) continue;
+    Eigen::Vector3f value = Eigen::Vector3f::Zero();
+    for (int l = 0; l < LampLighting::kMaxLamps; ++l) {
+      const Eigen::Vector3d from_lamp = particle.p_W - lamps.lamp_W[l];
+      const double r = from_lamp.norm();
+      const double cos_beam = lamps.axis_W.dot(from_lamp) / r;
+      if (cos_beam <= 0.0) continue;
+      const double g = power * std::pow(cos_beam, beam_exponent) / (r * r);
+      value += float(g) * table_.at(r + d).col(kEndmemberCount);
+    }
+    const Eigen::Vector2d uv = camera.project(p_C);
+    const double radius = f * particle.diameter_m / (2.0 * z);
+    const double blur = snow.aperture_mm * 1e-3 * f * std::abs(1.0 / z - 1.0 / context_.nominal_altitude_m);
+    const double sigma = std::sqrt(0.25 * radius * radius + blur * blur / 16.0 + 0.09);
+    value *= float(snow.albedo * M_PI * radius * radius);
+    const int reach = int(std::ceil(3.0 * sigma));
+    const int u0 = std::max(0, int(std::floor(uv.x())) - reach);
+    const int u1 = std::min(width - 1, int(std::ceil(uv.x())) + reach);
+    const int v0 = std::max(0, int(std::floor(uv.y())) - reach);
+    const int v1 = std::min(height - 1, int(std::ceil(uv.y())) + reach);
+    if (u0 > u1 || v0 > v1) continue;
+    // The dot's weights sum to 1 over its whole window (also when sigma is
+    // below a pixel), so the particle adds exactly its value times its area.
+    double total = 0.0;
+    for (int v = int(std::floor(uv.y())) - reach; v <= int(std::ceil(uv.y())) + reach; ++v) {
+      for (int u = int(std::floor(uv.x())) - reach; u <= int(std::ceil(uv.x())) + reach; ++u) {
+        total += std::exp(-(std::pow(u - uv.x(), 2) + std::pow(v - uv.y(), 2)) / (2.0 * sigma * sigma));
+      }
+    }
+    for (int v = v0; v <= v1; ++v) {
+      for (int u = u0; u <= u1; ++u) {
+        const double w = std::exp(-(std::pow(u - uv.x(), 2) + std::pow(v - uv.y(), 2)) / (2.0 * sigma * sigma));
+        linear[std::size_t(v) * width + u] += float(w / total) * value;
+      }
+    }
+  }
+}
+
 void RgbRenderer::addBackscatter(const Eigen::Vector2f& uv, double range_m,
                                  Eigen::Vector3f& linear) const {
   const float fu = (uv.x() + 0.5f) * float(grid_u_ - 1) / float(config_.camera.width);
@@ -251,7 +306,15 @@ cv::Mat RgbRenderer::render(std::span<const Pose> subframes, double gain,
   const int width = config_.camera.width;
   const int height = config_.camera.height;
   std::vector<Eigen::Vector3f> linear_image(std::size_t(width) * height);
-  for (std::size_t i = 0; i < subframes.size(); ++i) renderLinear(subframes[i], linear_image, i > 0);
+  std::vector<SnowParticle> snow;
+  if (context_.marine_snow.enabled) {
+    snow = sampleMarineSnow(context_.marine_snow, config_.camera, subframes[subframes.size() / 2].T_W_C,
+                            noiseSeed(seed_, 3, std::uint64_t(frame_index)));
+  }
+  for (std::size_t i = 0; i < subframes.size(); ++i) {
+    renderLinear(subframes[i], linear_image, i > 0);
+    if (!snow.empty()) drawMarineSnow(snow, subframes[i], linear_image);
+  }
   // One sub-frame: no division, so that the frame is the instantaneous render bit for bit.
   const float subframe_weight = 1.0f / float(subframes.size());
   const bool average = subframes.size() > 1;

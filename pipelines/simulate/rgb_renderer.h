@@ -13,7 +13,9 @@
 // misses sees black water. With optics.backscatter, each ray also gets the
 // light the water scatters into it up to its hit (or the maximum range)
 // (water_backscatter.h), from a table over a grid of rays every
-// kBackscatterGridPx pixels, interpolated bilinearly in the image.
+// kBackscatterGridPx pixels, interpolated bilinearly in the image. With
+// optics.marine_snow, each frame draws its own particles (rgb_marine_snow.h)
+// at the pose of its middle sub-frame and adds them to every sub-frame.
 //
 // Exposure: a frame is the average of its sub-frames (rgb_motion_blur.h; one
 // for an instantaneous exposure), each rendered from its own camera and body
@@ -75,6 +77,9 @@ class RgbRenderer {
   // holds the rays' image points (for the backscatter; null when it is off).
   void shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,
                  const Eigen::Vector2f* uv, int count, Eigen::Vector3f* out) const;
+  // Adds the marine snow `particles` seen from `pose` to the linear image.
+  void drawMarineSnow(const std::vector<SnowParticle>& particles, const Pose& pose,
+                      std::vector<Eigen::Vector3f>& linear) const;
   // Adds the backscatter of the ray through image point uv whose water path
   // is range_m long.
   void addBackscatter(const Eigen::Vector2f& uv, double range_m, Eigen::Vector3f& linear) const;

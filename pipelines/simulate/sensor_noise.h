@@ -34,9 +34,10 @@ class SensorNoise {
     has_spare_ = true;
     return x * scale;
   }
+  // A uniform draw in [0, 1).
+  double uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
  private:
-  double uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
   std::uint64_t next() {
     std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

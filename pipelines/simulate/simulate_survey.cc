@@ -262,6 +262,7 @@ SimulationSummary simulateSurvey(const SimulationConfig& config,
   context.shadows = config.optics.shadows;
   context.nominal_altitude_m = motion_config.altitude_m;
   context.backscatter = config.optics.backscatter;
+  context.marine_snow = config.optics.marine_snow;
   context.T_B_C = toSe3(config.calibration.T_B_C);
   context.T_C_U = toSe3(config.calibration.T_C_U);
   summary.scene_triangles = scene.triangles.size();

@@ -243,6 +243,19 @@ void validateSimulationConfig(const SimulationConfig& config) {
     require(backscatter.steps >= 8 && backscatter.steps <= 100000, "optics.backscatter.steps",
             "an integer in [8, 100000]");
   }
+  const MarineSnowConfig& snow = config.optics.marine_snow;
+  if (snow.enabled) {
+    require(snow.density_per_m3 >= 0.0 && snow.density_per_m3 <= 1e5, "optics.marine_snow.density_per_m3",
+            "a density in [0, 1e5] per m^3");
+    require(snow.diameter_min_mm > 0.0 && snow.diameter_min_mm <= snow.diameter_max_mm &&
+                snow.diameter_max_mm <= 100.0,
+            "optics.marine_snow.diameter_min_mm/diameter_max_mm", "0 < min <= max <= 100 mm");
+    require(snow.near_m > 0.0 && snow.near_m < snow.max_range_m && snow.max_range_m <= 20.0,
+            "optics.marine_snow.near_m/max_range_m", "0 < near_m < max_range_m <= 20 m");
+    require(snow.albedo > 0.0 && snow.albedo <= 1.0, "optics.marine_snow.albedo", "a reflectance in (0, 1]");
+    require(snow.aperture_mm >= 0.0 && snow.aperture_mm <= 100.0, "optics.marine_snow.aperture_mm",
+            "a diameter in [0, 100] mm");
+  }
   require(config.truth.ortho_pixel_m >= 0.002 && config.truth.ortho_pixel_m <= 1.0,
           "truth.ortho_pixel_m", "a pixel size in [0.002, 1] m");
 }

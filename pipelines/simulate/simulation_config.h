@@ -27,6 +27,7 @@
 #include "pipelines/simulate/motion/ins_synthesis.h"
 #include "pipelines/simulate/rgb_auto_gain.h"
 #include "pipelines/simulate/rgb_frame_writer.h"
+#include "pipelines/simulate/rgb_marine_snow.h"
 #include "pipelines/simulate/rgb_vignetting.h"
 #include "pipelines/simulate/water_backscatter.h"
 #include "pipelines/simulate/motion/vehicle_motion_config.h"
@@ -110,6 +111,8 @@ struct SimulatedOpticsConfig {
   bool shadows = true;              // cast shadow rays towards the lamps
   WaterBackscatterConfig backscatter;  // light scattered into the cameras (water_backscatter.h);
                                        // off by default
+  MarineSnowConfig marine_snow;  // particles lit in front of the RGB camera (rgb_marine_snow.h);
+                                 // off by default
 };
 
 struct SimulatedTruthConfig {

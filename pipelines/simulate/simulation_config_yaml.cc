@@ -273,11 +273,30 @@ WaterBackscatterConfig readBackscatter(const StrictYamlMap& optics) {
   return backscatter;
 }
 
+// optics.marine_snow: present means on; every key has a default.
+MarineSnowConfig readMarineSnow(const StrictYamlMap& optics) {
+  const StrictYamlMap map = optics.map("marine_snow", {"density_per_m3", "diameter_min_mm", "diameter_max_mm",
+                                                       "near_m", "max_range_m", "albedo", "aperture_mm"});
+  MarineSnowConfig snow;
+  snow.enabled = true;
+  snow.density_per_m3 = map.numberInRange("density_per_m3", 0.0, 1e5, snow.density_per_m3);
+  snow.diameter_min_mm = map.positiveNumberUpTo("diameter_min_mm", 100.0, snow.diameter_min_mm);
+  snow.diameter_max_mm = map.positiveNumberUpTo("diameter_max_mm", 100.0, snow.diameter_max_mm);
+  if (snow.diameter_max_mm < snow.diameter_min_mm) map.fail("diameter_max_mm", "expected at least diameter_min_mm");
+  snow.near_m = map.positiveNumberUpTo("near_m", 20.0, snow.near_m);
+  snow.max_range_m = map.positiveNumberUpTo("max_range_m", 20.0, snow.max_range_m);
+  if (snow.max_range_m <= snow.near_m) map.fail("max_range_m", "expected more than near_m");
+  snow.albedo = map.positiveNumberUpTo("albedo", 1.0, snow.albedo);
+  snow.aperture_mm = map.numberInRange("aperture_mm", 0.0, 100.0, snow.aperture_mm);
+  return snow;
+}
+
 void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("optics")) return;
   const StrictYamlMap optics =
       root.map("optics", {"turbidity", "lamp_power", "lamp_separation_m", "lamp_forward_m",
-                          "lamp_beam_exponent", "shadows", "backscatter"});
+                          "lamp_beam_exponent", "shadows", "backscatter",
+                          "marine_snow"});
   SimulatedOpticsConfig& o = config.optics;
   o.turbidity = nonNegative(optics, "turbidity", o.turbidity);
   o.lamp_power = optics.positiveNumber("lamp_power", o.lamp_power);
@@ -286,6 +305,7 @@ void readOptics(const StrictYamlMap& root, SimulationConfig& config) {
   o.lamp_beam_exponent = nonNegative(optics, "lamp_beam_exponent", o.lamp_beam_exponent);
   o.shadows = boolean(optics, "shadows", o.shadows);
   if (optics.has("backscatter")) o.backscatter = readBackscatter(optics);
+  if (optics.has("marine_snow")) o.marine_snow = readMarineSnow(optics);
 }
 
 }  // namespace

@@ -24,7 +24,9 @@
 //            depth_drift_m_per_sqrt_s, roll_pitch_noise_deg, heading_noise_deg,
 //            attitude (true | false)
 //   optics:  turbidity, lamp_power, lamp_separation_m, lamp_forward_m, lamp_beam_exponent,
-//            shadows (true | false), backscatter: {phase_g, near_m, max_range_m, steps}
+//            shadows (true | false), backscatter: {phase_g, near_m, max_range_m, steps},
+//            marine_snow: {density_per_m3, diameter_min_mm, diameter_max_mm, near_m,
+//            max_range_m, albedo, aperture_mm}
 //   truth:   ortho_pixel_m
 #include <filesystem>
 

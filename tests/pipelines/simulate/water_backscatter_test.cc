@@ -13,64 +13,14 @@
 
 #include "core/geometry/pushbroom_camera.h"
 #include "core/util/input_error.h"
-#include "pipelines/simulate/rgb_renderer.h"
 #include "pipelines/simulate/simulation_config_yaml.h"
-#include "pipelines/simulate/uhi_renderer.h"
+#include "tests/pipelines/simulate/flat_water.h"
 #include "tests/support/temp_folder.h"
 
 namespace hsmap {
 namespace {
 
-constexpr double kAltitude = 2.0;  // seabed below the RGB camera
-
-// A level vehicle (T_W_B = identity) over a flat seabed, tiny's cameras.
-struct FlatWater {
-  explicit FlatWater(double turbidity, bool backscatter) {
-    config = *simulationPreset("tiny");
-    config.optics.turbidity = turbidity;
-    config.optics.backscatter.enabled = backscatter;
-    config.uhi.read_noise_dn = 0.0;
-    config.uhi.electrons_per_dn = 1e12;
-    config.rgb.read_noise_dn = 0.0;
-    config.rgb.electrons_per_dn = 1e12;
-    config.rgb.camera = scaledRgbCamera(160, 90);
-    const double z = config.calibration.T_B_C.translation_m.z() + kAltitude;
-    scene.vertices = {{-20, -20, z}, {20, -20, z}, {20, 20, z}, {-20, 20, z}};
-    scene.triangles = {{0, 2, 1}, {0, 3, 2}};
-    scene.triangle_kind = {SurfaceKind::seabed, SurfaceKind::seabed};
-    caster = std::make_unique<MeshRayCaster>(scene.vertices, scene.triangles);
-    lamps = std::make_unique<LampRig>(config.optics, config.calibration.T_B_C);
-    context.scene = &scene;
-    context.caster = caster.get();
-    context.materials = &materials;
-    context.lamps = lamps.get();
-    context.turbidity = turbidity;
-    context.nominal_altitude_m = kAltitude;
-    context.backscatter = config.optics.backscatter;
-    context.T_B_C = SE3d(config.calibration.T_B_C.rotation, config.calibration.T_B_C.translation_m);
-    context.T_C_U = SE3d(config.calibration.T_C_U.rotation, config.calibration.T_C_U.translation_m);
-    wavelengths = uhiBandCentres(config.uhi);
-    uhi = std::make_unique<UhiRenderer>(context, config.uhi, wavelengths, 7);
-  }
-  Eigen::MatrixXf uhiLine() const {
-    UhiLineImage line;
-    uhi->render(SE3d(), context.T_B_C * context.T_C_U, 0, line);
-    return line.dn;
-  }
-  cv::Mat rgbFrame() const {
-    const RgbRenderer rgb(context, config.rgb, 7);
-    return rgb.render(SE3d(), context.T_B_C, 0);
-  }
-
-  SimulationConfig config;
-  SeabedScene scene;
-  std::unique_ptr<MeshRayCaster> caster;
-  MaterialField materials{3};
-  std::unique_ptr<LampRig> lamps;
-  RenderContext context;
-  std::vector<double> wavelengths;
-  std::unique_ptr<UhiRenderer> uhi;
-};
+using testing::FlatWater;
 
 // The model, independently: pi K(lambda) times the integral from near_m to R
 // of sum_l B(theta_l) / r_l^2 exp(-c (r_l + s)) b p_HG(psi_l) ds, the lamps
@@ -126,6 +76,10 @@ TEST(WaterBackscatter, UhiLevelOnAFlatSeabedIsTheSingleScatteringIntegral) {
     }
   }
   std::cout << "worst relative difference " << worst << "\n";
+  std::cout << "556 nm backscatter at samples 0, 60, 120, 180, 239: " << backscatter(9, 0) << " "
+            << backscatter(9, 60) << " " << backscatter(9, 120) << " " << backscatter(9, 180) << " "
+            << backscatter(9, 239) << " DN; the seabed's DN at 120 without it: " << clear.uhiLine()(9, 120)
+            << "\n";
   // truth/calibration.yaml's level is the principal sample's, at nadir.
   const std::vector<double> nominal = murky.uhi->nominalBackscatterDn();
   ASSERT_EQ(nominal.size(), K.size());
