@@ -21,6 +21,25 @@ namespace hsmap {
 
 namespace {
 
+// The contract's reflectance keys: null, saying why.
+void markNoReflectance(EvaluationMetrics& metrics) {
+  const MetricValue none = MetricValue::missing("this hsmap makes no reflectance product yet (radiance only)");
+  for (MetricValue* m : {&metrics.reflectance_sam_deg, &metrics.reflectance_rmse, &metrics.reflectance_gain_free_rmse,
+                         &metrics.water_attenuation_rmse_per_m}) {
+    *m = none;
+  }
+}
+
+// The UHI intrinsics the run used (calibration.yaml's uhi_camera, or
+// survey.yaml's) against the truth: they shape every variant's products.
+void measureUhiIntrinsics(const EvaluationInputs& inputs, EvaluationMetrics& metrics) {
+  const CalibrationErrors errors =
+      compareCalibration(inputs.calibration, inputs.survey.config.uhi.camera, inputs.truth.calibration);
+  metrics.uhi_focal_error_rel = MetricValue::of(errors.uhi_focal_error_rel);
+  metrics.uhi_cx_error_px = MetricValue::of(errors.uhi_cx_error_px);
+  for (std::size_t i = 0; i < 2; ++i) metrics.uhi_distortion_error[i] = MetricValue::of(errors.uhi_distortion_error[i]);
+}
+
 // A stacked run: scan lines side by side, nothing posed or placed.
 EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
   EvaluationMetrics metrics;
@@ -40,6 +59,8 @@ EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
         &metrics.mesh_completeness_positions_aligned}) {
     *m = none;
   }
+  measureUhiIntrinsics(inputs, metrics);
+  markNoReflectance(metrics);
   for (const StageRecord& stage : inputs.run.stages) metrics.timings_s.emplace_back(stage.name, stage.time_s);
   metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
   metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
@@ -101,7 +122,9 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   metrics.uhi_rotation_rmse_positions_aligned_deg = trajectory.uhi_rotation_rmse_positions_aligned_deg;
 
   const CalibrationErrors calibration =
-      compareCalibration(inputs.calibration, inputs.truth.calibration);
+      compareCalibration(inputs.calibration, inputs.survey.config.uhi.camera, inputs.truth.calibration);
+  measureUhiIntrinsics(inputs, metrics);
+  markNoReflectance(metrics);
   metrics.extrinsic_rotation_error_deg = MetricValue::of(calibration.extrinsic_rotation_error_deg);
   metrics.extrinsic_translation_error_m =
       MetricValue::of(calibration.extrinsic_translation_error_m);

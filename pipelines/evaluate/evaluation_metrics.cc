@@ -118,6 +118,12 @@ const std::vector<MetricRow>& metricRows() {
       {"ortho_coverage", "", &M::ortho_coverage},
       {"ortho_pixel_error_m", "m", &M::ortho_pixel_error_m},
       {"ortho_pixel_error_abs_m", "m", &M::ortho_pixel_error_abs_m},
+      {"reflectance_sam_deg", "deg", &M::reflectance_sam_deg},
+      {"reflectance_rmse", "", &M::reflectance_rmse},
+      {"reflectance_gain_free_rmse", "", &M::reflectance_gain_free_rmse},
+      {"water_attenuation_rmse_per_m", "1/m", &M::water_attenuation_rmse_per_m},
+      {"uhi_focal_error_rel", "", &M::uhi_focal_error_rel},
+      {"uhi_cx_error_px", "px", &M::uhi_cx_error_px},
       {"peak_rss_mb", "MiB", &M::peak_rss_mb},
       {"ins_floor_rgb_ate_m", "m", &M::ins_floor_rgb_ate_m},
       {"ins_floor_scale_error", "", &M::ins_floor_scale_error},
@@ -145,6 +151,10 @@ std::string metricsJson(const EvaluationMetrics& metrics) {
       json += "}";
     }
     json += ",\n  \"" + std::string(row.key) + "\": " + jsonValue(metrics.*row.value);
+    if (std::string(row.key) == "uhi_cx_error_px") {
+      json += ",\n  \"uhi_distortion_error\": [" + jsonValue(metrics.uhi_distortion_error[0]) + ", " +
+              jsonValue(metrics.uhi_distortion_error[1]) + "]";
+    }
   }
   return json + "\n}\n";
 }
@@ -180,6 +190,13 @@ void printMetricsTable(std::ostream& out, const EvaluationMetrics& metrics) {
       }
     }
     printRow(row);
+    if (key == "uhi_cx_error_px") {
+      const auto& k = metrics.uhi_distortion_error;
+      out << trimmedRight(padded("uhi_distortion_error", kKeyWidth) +
+                          padded("[" + tableValue(k[0]) + ", " + tableValue(k[1]) + "]", kValueWidth) +
+                          (k[0].value ? "" : k[0].reason))
+          << "\n";
+    }
     for (const MetricRow& under : metricRows()) {
       const char* parent = shownUnder(under.key);
       if (parent && key == parent) printRow(under);

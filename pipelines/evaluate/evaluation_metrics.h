@@ -22,6 +22,7 @@
 #include <iosfwd>
 #include <string>
 #include <utility>
+#include <array>
 #include <vector>
 
 #include "pipelines/evaluate/metric_value.h"
@@ -54,6 +55,17 @@ struct EvaluationMetrics {
   // has RUN/hyperspectral/ortho.hdr and its ancillary layer.
   MetricValue ortho_pixel_error_m;
   MetricValue ortho_pixel_error_abs_m;
+  // Reflectance (the contract's keys): hsmap makes no reflectance product
+  // yet, so they are null with that reason.
+  MetricValue reflectance_sam_deg;
+  MetricValue reflectance_rmse;
+  MetricValue reflectance_gain_free_rmse;
+  MetricValue water_attenuation_rmse_per_m;
+  // The UHI camera's intrinsics against the truth (calibration_metrics.h);
+  // uhi_distortion_error is metrics.json's list [k1, k2].
+  MetricValue uhi_focal_error_rel;
+  MetricValue uhi_cx_error_px;
+  std::array<MetricValue, 2> uhi_distortion_error;
   // For the table only (not in metrics.json): the pixel error's counts
   // (OrthoPixelError::summary()), empty when it was not measured.
   std::string ortho_pixel_counts;

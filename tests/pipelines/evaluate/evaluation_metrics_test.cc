@@ -31,6 +31,14 @@ EvaluationMetrics example() {
   metrics.ortho_coverage = no_ortho;
   metrics.ortho_pixel_error_m = no_ortho;
   metrics.ortho_pixel_error_abs_m = no_ortho;
+  const MetricValue no_reflectance = MetricValue::missing("no reflectance product");
+  metrics.reflectance_sam_deg = no_reflectance;
+  metrics.reflectance_rmse = no_reflectance;
+  metrics.reflectance_gain_free_rmse = no_reflectance;
+  metrics.water_attenuation_rmse_per_m = no_reflectance;
+  metrics.uhi_focal_error_rel = MetricValue::of(0.002);
+  metrics.uhi_cx_error_px = MetricValue::of(0.5);
+  metrics.uhi_distortion_error = {MetricValue::of(0.001), MetricValue::of(0.0002)};
   metrics.timings_s = {{"frontend", 12.5}, {"geo \"ref\"", 3.25}, {"total", 15.75}};
   metrics.peak_rss_mb = MetricValue::of(300);
   metrics.ins_floor_rgb_ate_m = MetricValue::of(0.05);
@@ -67,6 +75,13 @@ TEST(EvaluationMetrics, JsonHasEveryKeyInTheContractsOrder) {
             "  \"ortho_coverage\": null,\n"
             "  \"ortho_pixel_error_m\": null,\n"
             "  \"ortho_pixel_error_abs_m\": null,\n"
+            "  \"reflectance_sam_deg\": null,\n"
+            "  \"reflectance_rmse\": null,\n"
+            "  \"reflectance_gain_free_rmse\": null,\n"
+            "  \"water_attenuation_rmse_per_m\": null,\n"
+            "  \"uhi_focal_error_rel\": 0.002,\n"
+            "  \"uhi_cx_error_px\": 0.5,\n"
+            "  \"uhi_distortion_error\": [0.001, 2e-04],\n"
             "  \"timings_s\": {\"frontend\": 12.5, \"geo \\\"ref\\\"\": 3.25, \"total\": 15.75},\n"
             "  \"peak_rss_mb\": 300,\n"
             "  \"ins_floor_rgb_ate_m\": 0.05,\n"
@@ -113,6 +128,13 @@ TEST(EvaluationMetrics, TableShowsValuesUnitsTheInsFloorAndWhyAValueIsMissing) {
             "ortho_coverage                          null                              no products stage\n"
             "ortho_pixel_error_m                     null          m                   no products stage\n"
             "ortho_pixel_error_abs_m                 null          m                   no products stage\n"
+            "reflectance_sam_deg                     null          deg                 no reflectance product\n"
+            "reflectance_rmse                        null                              no reflectance product\n"
+            "reflectance_gain_free_rmse              null                              no reflectance product\n"
+            "water_attenuation_rmse_per_m            null          1/m                 no reflectance product\n"
+            "uhi_focal_error_rel                     0.002\n"
+            "uhi_cx_error_px                         0.5           px\n"
+            "uhi_distortion_error                    [0.001, 0.0002]\n"
             "timings_s.frontend                      12.5          s\n"
             "timings_s.geo \"ref\"                     3.25          s\n"
             "timings_s.total                         15.75         s\n"
