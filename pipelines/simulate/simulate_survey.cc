@@ -78,6 +78,12 @@ void perturbCalibration(const SimulationConfig& config, SurveyConfig& survey) {
   survey.uhi.T_C_U.translation_m =
       truth.T_C_U.translation_m + truth.error_translation_m * randomUnit();
   survey.uhi.time_offset_s = truth.time_offset_s - truth.error_time_offset_s;
+  // The UHI camera's intrinsics as a calibration in air or an old one would
+  // give them (truth/calibration.yaml keeps the true uhi.camera).
+  survey.uhi.camera.f *= 1.0 + truth.error_uhi_focal_rel;
+  survey.uhi.camera.cx += truth.error_uhi_cx_px;
+  for (std::size_t i = 0; i < 2; ++i) survey.uhi.camera.distortion[i] += truth.error_uhi_distortion[i];
+  survey.uhi.camera_sigma = truth.uhi_camera_sigma;
   // Priors that do not contradict the guess: at least as wide as its error.
   survey.uhi.sigma_rotation_deg = std::max(2.0, truth.error_rotation_deg);
   survey.uhi.sigma_translation_m = std::max(0.05, truth.error_translation_m);

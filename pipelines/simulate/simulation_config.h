@@ -16,6 +16,7 @@
 //   transect-100m  100 m transect over low relief at full resolution (the scale case)
 // Default resolutions: RGB 960x540 at 25 Hz, UHI 1920 samples x 211 bands
 // (400-800 nm) at 30 Hz, INS at 1 Hz.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,6 +24,7 @@
 
 #include "core/geometry/camera_parameters.h"
 #include "core/geometry/geodetic_point.h"
+#include "core/survey/camera_sigma.h"
 #include "core/survey/survey_config.h"
 #include "pipelines/simulate/motion/ins_synthesis.h"
 #include "pipelines/simulate/rgb_auto_gain.h"
@@ -98,6 +100,13 @@ struct SimulatedCalibrationConfig {
   double error_rotation_deg = 2.0;
   double error_translation_m = 0.05;
   double error_time_offset_s = 0.015;
+  // survey.yaml's UHI camera: the truth (uhi.camera) moved by these (0: the
+  // exact intrinsics, as before), and the 1-sigma written as
+  // uhi.camera_sigma (absent: none, the intrinsics are held fixed).
+  double error_uhi_focal_rel = 0.0;              // f_guess = f (1 + e)
+  double error_uhi_cx_px = 0.0;                  // cx_guess = cx + e
+  std::array<double, 2> error_uhi_distortion{0.0, 0.0};  // k_guess = k + e
+  std::optional<PushbroomSigma> uhi_camera_sigma;
 };
 
 struct SimulatedOpticsConfig {

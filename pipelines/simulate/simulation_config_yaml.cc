@@ -223,8 +223,9 @@ void readUhi(const StrictYamlMap& root, SimulationConfig& config) {
 void readCalibration(const StrictYamlMap& root, SimulationConfig& config) {
   if (!root.has("calibration")) return;
   const StrictYamlMap calibration = root.map(
-      "calibration", {"T_C_U", "T_B_C", "time_offset_s", "error_rotation_deg",
-                      "error_translation_m", "error_time_offset_s"});
+      "calibration", {"T_C_U", "T_B_C", "time_offset_s", "error_rotation_deg", "error_translation_m",
+                      "error_time_offset_s", "error_uhi_focal_rel", "error_uhi_cx_px", "error_uhi_distortion",
+                      "uhi_camera_sigma"});
   SimulatedCalibrationConfig& c = config.calibration;
   if (calibration.has("T_C_U")) {
     c.T_C_U = readRigidTransform(calibration.map("T_C_U", {"rotation_wxyz", "translation_m"}));
@@ -236,6 +237,12 @@ void readCalibration(const StrictYamlMap& root, SimulationConfig& config) {
   c.error_rotation_deg = nonNegative(calibration, "error_rotation_deg", c.error_rotation_deg);
   c.error_translation_m = nonNegative(calibration, "error_translation_m", c.error_translation_m);
   c.error_time_offset_s = calibration.number("error_time_offset_s", c.error_time_offset_s);
+  c.error_uhi_focal_rel = calibration.numberInRange("error_uhi_focal_rel", -0.5, 0.5, c.error_uhi_focal_rel);
+  c.error_uhi_cx_px = calibration.numberInRange("error_uhi_cx_px", -1e4, 1e4, c.error_uhi_cx_px);
+  const std::vector<double> distortion = calibration.numbers(
+      "error_uhi_distortion", 2, {c.error_uhi_distortion[0], c.error_uhi_distortion[1]});
+  c.error_uhi_distortion = {distortion[0], distortion[1]};
+  if (calibration.has("uhi_camera_sigma")) c.uhi_camera_sigma = readPushbroomSigma(calibration, "uhi_camera_sigma");
 }
 
 void readIns(const StrictYamlMap& root, SimulationConfig& config) {

@@ -23,6 +23,7 @@
 #include "core/survey/survey_summary.h"
 #include "core/survey/survey_truth.h"
 #include "pipelines/simulate/simulate_survey.h"
+#include "pipelines/simulate/simulation_config_yaml.h"
 #include "tests/pipelines/simulate/tiny_survey.h"
 #include "tests/support/temp_folder.h"
 
@@ -114,6 +115,41 @@ TEST(SimulatedSurveySettings, InsWithoutAttitudeLoadsAndKeepsThePositions) {
   printSurveySummary(printed, summarizeSurvey(survey));
   EXPECT_NE(printed.str().find("position only (no attitude)"), std::string::npos)
       << printed.str();
+}
+
+// The UHI intrinsics' guess (issue 44): survey.yaml's uhi.camera is the
+// truth moved by the stated errors, with the stated sigmas; the truth and
+// the rendered cube keep the true camera. Read from a configuration file as
+// users write it.
+TEST(SimulatedSurveySettings, UhiIntrinsicsGuessIsTheTruthMovedByTheStatedErrors) {
+  const auto& tiny = testing::tinySurvey();
+  testing::TempFolder temp("uhi_intrinsics");
+  testing::writeText(temp / "config.yaml",
+                     "format: hsmap-simulation/1\n"
+                     "preset: tiny\n"
+                     "calibration:\n"
+                     "  error_uhi_focal_rel: 0.01\n"
+                     "  error_uhi_cx_px: 3\n"
+                     "  error_uhi_distortion: [0.02, 0]\n"
+                     "  uhi_camera_sigma: {f: 15, cx: 3, distortion: [0.02, 0.01]}\n");
+  const SimulationConfig config = readSimulationConfig(temp / "config.yaml");
+  std::ostringstream log;
+  simulateSurvey(config, temp / "survey", log);
+  const Survey survey = loadSurvey(temp / "survey");
+  const PushbroomParameters& truth = tiny.config.uhi.camera;
+  const PushbroomParameters& guess = survey.config.uhi.camera;
+  EXPECT_DOUBLE_EQ(guess.f, truth.f * 1.01);
+  EXPECT_DOUBLE_EQ(guess.cx, truth.cx + 3.0);
+  EXPECT_DOUBLE_EQ(guess.distortion[0], truth.distortion[0] + 0.02);
+  EXPECT_DOUBLE_EQ(guess.distortion[1], truth.distortion[1]);
+  ASSERT_TRUE(survey.config.uhi.camera_sigma.has_value());
+  EXPECT_EQ(survey.config.uhi.camera_sigma->f, 15.0);
+  EXPECT_EQ(survey.config.uhi.camera_sigma->distortion[1], 0.01);
+  const SurveyTruth survey_truth = loadSurveyTruth(temp / "survey");
+  EXPECT_EQ(survey_truth.calibration.uhi_camera.f, truth.f);
+  EXPECT_EQ(survey_truth.calibration.uhi_camera.cx, truth.cx);
+  // The cube is rendered through the true camera: the same bytes as tiny's.
+  EXPECT_EQ(testing::readText(temp / "survey" / "uhi" / "cube.raw"), testing::readText(tiny.folder / "uhi" / "cube.raw"));
 }
 
 TEST(SimulatedSurveySettings, TurnedTrackHeadsThatWayAndAlwaysSeesTheSeabed) {
