@@ -184,10 +184,11 @@ void RgbRenderer::addBackscatter(const Eigen::Vector2f& uv, double range_m,
   const float tu = std::clamp(fu - float(i), 0.0f, 1.0f);
   const float tv = std::clamp(fv - float(j), 0.0f, 1.0f);
   const int ray = j * grid_u_ + i;
-  backscatter_->accumulate(ray, range_m, (1.0f - tu) * (1.0f - tv), linear.data());
-  backscatter_->accumulate(ray + 1, range_m, tu * (1.0f - tv), linear.data());
-  backscatter_->accumulate(ray + grid_u_, range_m, (1.0f - tu) * tv, linear.data());
-  backscatter_->accumulate(ray + grid_u_ + 1, range_m, tu * tv, linear.data());
+  const WaterBackscatterTable::RangeIndex range = backscatter_->rangeIndex(range_m);
+  backscatter_->accumulate(ray, range, (1.0f - tu) * (1.0f - tv), linear.data());
+  backscatter_->accumulate(ray + 1, range, tu * (1.0f - tv), linear.data());
+  backscatter_->accumulate(ray + grid_u_, range, (1.0f - tu) * tv, linear.data());
+  backscatter_->accumulate(ray + grid_u_ + 1, range, tu * tv, linear.data());
 }
 
 void RgbRenderer::shadeRays(const SE3d& T_W_B, const SE3d& T_W_C, const Eigen::Vector3d* rays_C,

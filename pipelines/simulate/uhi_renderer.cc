@@ -96,8 +96,9 @@ void UhiRenderer::addBackscatter(double u, double range_m, float weight, float* 
   const double f = (u + 0.5) * (grid_ - 1) / config_.camera.samples;
   const int i = std::clamp(int(std::floor(f)), 0, grid_ - 2);
   const float t = float(std::clamp(f - i, 0.0, 1.0));
-  backscatter_->accumulate(i, range_m, weight * (1.0f - t), out);
-  backscatter_->accumulate(i + 1, range_m, weight * t, out);
+  const WaterBackscatterTable::RangeIndex range = backscatter_->rangeIndex(range_m);
+  backscatter_->accumulate(i, range, weight * (1.0f - t), out);
+  backscatter_->accumulate(i + 1, range, weight * t, out);
 }
 
 Eigen::VectorXf UhiRenderer::backscatterDn(double u, double range_m) const {

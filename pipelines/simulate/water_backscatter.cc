@@ -55,15 +55,19 @@ WaterBackscatterTable::WaterBackscatterTable(const WaterBackscatterConfig& confi
   });
 }
 
-void WaterBackscatterTable::accumulate(int ray, double range_m, float weight, float* out) const {
+WaterBackscatterTable::RangeIndex WaterBackscatterTable::rangeIndex(double range_m) const {
   // The inverse of s = near + span (k / steps)^2.
   const double fraction = std::clamp((range_m - near_) / span_, 0.0, 1.0);
   const double position = steps_ * std::sqrt(fraction);
   const int k = std::min(int(position), steps_ - 1);
   const double s0 = near_ + span_ * std::pow(double(k) / steps_, 2);
   const double s1 = near_ + span_ * std::pow(double(k + 1) / steps_, 2);
-  const float t = float(std::clamp((range_m - s0) / (s1 - s0), 0.0, 1.0));
-  const float* f0 = cumulative_.data() + (std::size_t(ray) * (steps_ + 1) + k) * channels_;
+  return RangeIndex{k, float(std::clamp((range_m - s0) / (s1 - s0), 0.0, 1.0))};
+}
+
+void WaterBackscatterTable::accumulate(int ray, RangeIndex range, float weight, float* out) const {
+  const float t = range.t;
+  const float* f0 = cumulative_.data() + (std::size_t(ray) * (steps_ + 1) + range.step) * channels_;
   const float* f1 = f0 + channels_;
   for (int c = 0; c < channels_; ++c) out[c] += weight * ((1.0f - t) * f0[c] + t * f1[c]);
 }

@@ -75,8 +75,19 @@ class WaterBackscatterTable {
   int channels() const { return channels_; }
   int rays() const { return rays_; }
   double maxRange() const { return near_ + span_; }
-  // out[k] += weight * F_k(R) of ray `ray`, R clamped to [near_m, max_range_m].
-  void accumulate(int ray, double range_m, float weight, float* out) const;
+  // Where a range falls among the step boundaries: found once, used for
+  // every ray that a renderer interpolates between.
+  struct RangeIndex {
+    int step = 0;    // boundary k below R
+    float t = 0.0f;  // (R - s_k) / (s_k+1 - s_k)
+  };
+  // R clamped to [near_m, max_range_m].
+  RangeIndex rangeIndex(double range_m) const;
+  // out[k] += weight * F_k(R) of ray `ray`.
+  void accumulate(int ray, RangeIndex range, float weight, float* out) const;
+  void accumulate(int ray, double range_m, float weight, float* out) const {
+    accumulate(ray, rangeIndex(range_m), weight, out);
+  }
 
  private:
   double near_;
