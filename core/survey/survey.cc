@@ -98,45 +98,36 @@ std::vector<double> wavelengthsInNm(const EnviHeader& header, const std::filesys
   return nm;
 }
 
-void checkLineCount(const Survey& survey) {
-  const auto cube_lines = static_cast<std::size_t>(survey.cube->header().lines);
-  const std::size_t rows = survey.line_times.size();
-  if (rows == cube_lines) return;
-  const std::string cube_text = "the cube " + survey.cube_header_path.string() + " has " +
-                                std::to_string(cube_lines) + " lines";
-  if (rows > cube_lines) {
-    // Line numbers: header on line 1, scan line i on line i + 2.
-    throw InputError(survey.lines_path, InputError::atLine(static_cast<long long>(cube_lines) + 2),
-                     "row for scan line " + std::to_string(cube_lines) + ", but " + cube_text +
-                         "; expected one row per scan line (" + std::to_string(rows) +
-                         " rows given)");
+// A table with one row per item of the cube (scan line, band) against the
+// cube's count: the first row too many, or the end of a table too short,
+// named at its line (header on line 1, item i on line i + 2).
+void checkRowsPerCubeItem(const std::filesystem::path& table, std::size_t rows, std::size_t items,
+                          const std::filesystem::path& cube_header, const std::string& item,
+                          const std::string& items_word, const std::string& per) {
+  if (rows == items) return;
+  const std::string cube_text = "the cube " + cube_header.string() + " has " + std::to_string(items) + " " + items_word;
+  if (rows > items) {
+    throw InputError(table, InputError::atLine(static_cast<long long>(items) + 2),
+                     "row for " + item + " " + std::to_string(items) + ", but " + cube_text + "; expected one row per " +
+                         per + " (" + std::to_string(rows) + " rows given)");
   }
-  throw InputError(survey.lines_path, InputError::atLine(static_cast<long long>(rows) + 1),
-                   "the table ends at scan line " + std::to_string(rows - 1) + " (" +
-                       std::to_string(rows) + " rows), but " + cube_text +
-                       "; expected one row per scan line");
+  throw InputError(table, InputError::atLine(static_cast<long long>(rows) + 1),
+                   "the table ends at " + item + " " + std::to_string(rows - 1) + " (" + std::to_string(rows) +
+                       " rows), but " + cube_text + "; expected one row per " + per);
+}
+
+void checkLineCount(const Survey& survey) {
+  checkRowsPerCubeItem(survey.lines_path, survey.line_times.size(),
+                       static_cast<std::size_t>(survey.cube->header().lines), survey.cube_header_path, "scan line",
+                       "lines", "scan line");
 }
 
 // lights.response gives K(λ) per band: a table for another camera (or with a
 // band missing) would silently scale the reflectance of the wrong bands.
 void checkLampResponseBandCount(const Survey& survey) {
-  const auto bands = static_cast<std::size_t>(survey.cube->header().bands);
-  const std::size_t rows = survey.lamp_response_dn.size();
-  if (rows == bands) return;
-  const std::string cube_text = "the cube " + survey.cube_header_path.string() + " has " +
-                                std::to_string(bands) + " bands";
-  if (rows > bands) {
-    // Line numbers: header on line 1, band b on line b + 2.
-    throw InputError(survey.lamp_response_path,
-                     InputError::atLine(static_cast<long long>(bands) + 2),
-                     "row for band " + std::to_string(bands) + ", but " + cube_text +
-                         "; expected one row per UHI band (" + std::to_string(rows) +
-                         " rows given)");
-  }
-  throw InputError(survey.lamp_response_path, InputError::atLine(static_cast<long long>(rows) + 1),
-                   "the table ends at band " + std::to_string(rows - 1) + " (" +
-                       std::to_string(rows) + " rows), but " + cube_text +
-                       "; expected one row per UHI band");
+  checkRowsPerCubeItem(survey.lamp_response_path, survey.lamp_response_dn.size(),
+                       static_cast<std::size_t>(survey.cube->header().bands), survey.cube_header_path, "band",
+                       "bands", "UHI band");
 }
 
 // survey.yaml asks for self-calibrated intrinsics (a camera_sigma > 0):
