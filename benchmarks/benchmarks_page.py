@@ -48,7 +48,7 @@ REPO = Path(__file__).resolve().parent.parent
 PRESETS = ["tiny", "rugged", "flat", "low-relief", "transect-100m"]
 VARIANTS = ["stacked", "planar", "sequential", "joint"]
 SECTIONS = ["simulate", "inspect", "frontend", "georef", "scale", "surface", "refine", "joint", "variants",
-            "resume", "products", "tiny", "unlike", "kernels", "io"]
+            "compare", "resume", "products", "tiny", "unlike", "kernels", "io"]
 # Surveys written from a configuration rather than a preset (section
 # `scale`): few INS fixes, and tracking losses.
 CONFIG_SURVEYS = {
@@ -459,6 +459,26 @@ def measure_restart(ctx, survey, variant):
                    "stages": rows, "command": command})
 
 
+def compare_argv(ctx, survey):
+    return [ctx.hsmap(), "compare", ctx.survey(survey), "--out", ctx.work / "compare" / survey, "--force"]
+
+
+def measure_compare(ctx, survey):
+    """`hsmap compare` of the four variants, timed once; each variant's time from its progress line."""
+    mid = f"compare/{survey}"
+    need_build(ctx, ctx.hsmap())
+    ensure_survey(ctx, survey)
+    argv = compare_argv(ctx, survey)
+    r = ctx.execute(argv, f"compare_{survey}")
+    variants = {}
+    for line in r["stdout"].splitlines():
+        m = re.match(r"\[(\w+)\] ok in ([0-9.]+) s", line)
+        if m:
+            variants[m.group(1)] = float(m.group(2))
+    ctx.save(mid, {"ok": r["rc"] == 0, "error": r.get("error"), "wall_s": [r["wall_s"]], "peak_mb": [r["peak_mb"]],
+                   "variants": variants, "command": "/usr/bin/time -v " + ctx.show(argv)})
+
+
 def measure_inspect(ctx, survey):
     mid = f"inspect/{survey}"
     need_build(ctx, ctx.hsmap())
@@ -717,6 +737,8 @@ def section_needs(section, surveys):
         return [f"run/{n}/{v}" for n in twenty for v in ("sequential", "joint")]
     if section == "variants":
         return [f"run/rugged/{v}" for v in VARIANTS] if "rugged" in s else []
+    if section == "compare":
+        return ([f"run/rugged/{v}" for v in VARIANTS] + ["compare/rugged"]) if "rugged" in s else []
     if section == "resume":
         return ["run/rugged/sequential", "resume/rugged/sequential"] + \
                [f"restart/rugged/{v}" for v in VARIANTS] if "rugged" in s else []
@@ -738,10 +760,11 @@ def plan_order(mid):
     """Cheap first: tiny, then the 20 m presets, the kernels and io, transect-100m last."""
     kind, _, rest = mid.partition("/")
     survey = rest.split("/")[0] if kind in ("simulate", "run", "resume", "restart", "inspect", "frontend",
-                                             "products") else None
+                                             "products", "compare") else None
     survey_rank = {"tiny": 0, "short": 1, "short-no-attitude": 1, "rugged": 1, "flat": 2, "low-relief": 3,
                    "rugged-black-frames": 4, "rugged-blackout-2s": 4}.get(survey, 6 if survey else 5)
-    kind_rank = {"simulate": 0, "inspect": 1, "run": 2, "resume": 3, "restart": 3, "frontend": 4, "products": 5,
+    kind_rank = {"simulate": 0, "inspect": 1, "run": 2, "resume": 3, "restart": 3, "compare": 3, "frontend": 4,
+                 "products": 5,
                  "gbench": 6, "envi": 7, "geotiff": 8}[kind]
     variant_rank = 0
     if kind == "run":
@@ -767,6 +790,8 @@ def run_measurement(ctx, mid):
             measure_restart(ctx, survey, variant)
         elif kind == "inspect":
             measure_inspect(ctx, rest)
+        elif kind == "compare":
+            measure_compare(ctx, rest)
         elif kind == "frontend":
             measure_frontend(ctx, rest)
         elif kind == "products":
@@ -1160,6 +1185,32 @@ def sections(page):
     out["variants"] = ("Variants side by side (rugged)",
                        ["`ortho_pixel_error_m`: where each ortho pixel's scan line and sample truly see the seabed, "
                         "against the pixel (docs/EVALUATE.md); defined for every variant with a map position."], rows)
+
+    # compare
+    rows = []
+    mid = "compare/rugged"
+    m, why = page.measured(mid)
+    cmd = (page.get(mid) or {}).get("command") or "/usr/bin/time -v " + ctx.show(compare_argv(ctx, "rugged"))
+    separate = [page.get(f"run/rugged/{v}") for v in VARIANTS]
+    target = None
+    if all(r and r.get("ok") for r in separate):
+        fronts = [r.get("stages", {}).get("frontend", {}).get("time_s") for r in separate
+                  if r.get("stages", {}).get("frontend")]
+        if fronts:
+            target = sum(r["wall_s"][0] for r in separate) - 3 * median(fronts)
+    goal = Goal("≤ the four runs minus three front-ends" + (f" ({fmt_s(target)})" if target else ""),
+                (lambda v, p, t=target: v <= t) if target else None)
+    if m is None:
+        rows.append(("rugged: `hsmap compare`, all four variants, wall time", goal, Cell(why, m=page.get(mid), command=cmd)))
+    else:
+        parts = ", ".join(f"{k} {fmt_s(v)}" for k, v in m.get("variants", {}).items())
+        rows.append(("rugged: `hsmap compare`, all four variants, wall time", goal,
+                     Cell(fmt_s(m["wall_s"][0]) + f" (1 run; {parts})", m["wall_s"][0], m, cmd)))
+        rows.append(("rugged: `hsmap compare` peak memory", NO_GOAL, Cell(fmt_mb(m["peak_mb"][0]), m["peak_mb"][0], m, cmd)))
+    out["compare"] = ("One command for all variants (`hsmap compare`)",
+                      ["The four variants on rugged, each evaluated, with the stages they share run once (docs/COMPARE.md); "
+                       "the goal is the sum of the four `run/rugged/*` runs of this page minus three front-ends "
+                       "(their `frontend` stage, median)."], rows)
 
     # resume
     rows = []
