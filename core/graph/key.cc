@@ -10,6 +10,10 @@ char symbolOf(VariableKind kind) {
     case VariableKind::extrinsic: return 'e';
     case VariableKind::time_offset: return 'd';
     case VariableKind::intrinsics: return 'k';
+    case VariableKind::water_attenuation: return 'c';
+    case VariableKind::backscatter: return 'o';
+    case VariableKind::lamp_beam: return 'm';
+    case VariableKind::reflectance: return 'r';
   }
   return '?';
 }

@@ -20,6 +20,10 @@ enum class VariableKind : std::uint8_t {
   extrinsic,             // 'e': a sensor-to-sensor pose such as T_C_U
   time_offset,           // 'd': a clock offset in seconds
   intrinsics,            // 'k': camera intrinsic parameters
+  water_attenuation,     // 'c': the water's attenuation c(lambda) of one band, 1/m
+  backscatter,           // 'o': the additive backscatter of one band, DN
+  lamp_beam,             // 'm': the lamps' beam-shape coefficients
+  reflectance,           // 'r': log reflectance of one seabed point in one band
 };
 
 // The one-letter symbol of a kind, as printed in keys ("x3").
@@ -46,6 +50,10 @@ constexpr Key S(std::uint64_t i) { return {VariableKind::spline_control_point, i
 constexpr Key E(std::uint64_t i = 0) { return {VariableKind::extrinsic, i}; }
 constexpr Key D(std::uint64_t i = 0) { return {VariableKind::time_offset, i}; }
 constexpr Key K(std::uint64_t i = 0) { return {VariableKind::intrinsics, i}; }
+constexpr Key C(std::uint64_t band) { return {VariableKind::water_attenuation, band}; }
+constexpr Key O(std::uint64_t band) { return {VariableKind::backscatter, band}; }
+constexpr Key M(std::uint64_t i = 0) { return {VariableKind::lamp_beam, i}; }
+constexpr Key R(std::uint64_t i) { return {VariableKind::reflectance, i}; }
 
 }  // namespace hsmap
 

@@ -50,6 +50,7 @@ void ScanLineCaster::castLine(std::int64_t line, const SE3d& T_W_U, ScanLineHits
   out.p_W.assign(std::size_t(samples), Eigen::Vector3d::Constant(kNaN));
   out.range_m.assign(std::size_t(samples), kNaNf);
   out.incidence_deg.assign(std::size_t(samples), kNaNf);
+  out.triangle.assign(std::size_t(samples), -1);
   out.hits = out.misses = 0;
   out.no_ray = samples - samples_with_ray_;
 
@@ -83,6 +84,7 @@ void ScanLineCaster::castLine(std::int64_t line, const SE3d& T_W_U, ScanLineHits
     const Ray& ray = rays[i];
     out.p_W[s] = ray.origin + hit.distance * ray.direction;
     out.range_m[s] = float(hit.distance);
+    out.triangle[s] = hit.triangle;
     // The normal faces the ray's origin: the incidence is the angle between
     // -direction and the normal.
     const double cosine = std::clamp(-hit.normal.dot(ray.direction), -1.0, 1.0);

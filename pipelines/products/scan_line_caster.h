@@ -5,7 +5,7 @@
 // t_W_U along R_W_U * unproject(s) (y_U = 0: the centre of the instantaneous
 // field of view) and is cast onto the surface mesh (MeshRayCaster, Embree).
 //
-// Per pixel: the first hit p_W, the range (metres from the optical centre)
+// Per pixel: the first hit p_W, the hit triangle, the range (metres from the optical centre)
 // and the incidence angle (degrees between the ray and the hit triangle's
 // face normal: 0 looking straight at the surface, 90 grazing). A pixel with
 // no hit in [min_range_m, max_range_m] is a miss; a pixel whose ray does not
@@ -45,6 +45,7 @@ struct ScanLineHits {
   std::vector<Eigen::Vector3d> p_W;      // NaN for a miss
   std::vector<float> range_m;            // NaN for a miss
   std::vector<float> incidence_deg;      // NaN for a miss
+  std::vector<int> triangle;             // the hit triangle (mesh index); -1 for a miss
   int hits = 0;
   int misses = 0;                        // rays cast that hit nothing
   int no_ray = 0;                        // pixels without a ray
