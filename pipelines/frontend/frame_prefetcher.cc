@@ -21,7 +21,8 @@ FramePrefetcher::FramePrefetcher(const RgbFrameSource& source, const FrontendOpt
       preprocessor_(options, width_px, height_px, std::move(lamp_light_field)),
       first_(first),
       last_(last),
-      capacity_(std::size_t(options.prefetch_frames)) {
+      capacity_(std::size_t(options.prefetch_frames)),
+      keep_linear_(options.compensate_gain) {
   thread_ = std::thread([this] { run(); });
 }
 
@@ -50,7 +51,7 @@ void FramePrefetcher::run() {
       frame.decode_ms = msSince(start);
       if (frame.error.empty()) {
         const auto start_pre = std::chrono::steady_clock::now();
-        frame.gray = preprocessor_.process(bgr, &frame.quality);
+        frame.gray = preprocessor_.process(bgr, &frame.quality, keep_linear_ ? &frame.linear : nullptr);
         frame.preprocess_ms = msSince(start_pre);
       }
       std::unique_lock<std::mutex> lock(mutex_);

@@ -31,6 +31,7 @@ struct PrefetchedFrame {
   int index = 0;
   double t = 0.0;
   cv::Mat gray;          // pre-processed (ImagePreprocessor); empty when undecodable
+  cv::Mat linear;        // before CLAHE (ImagePreprocessor::process), with compensate_gain only
   ImageQuality quality;
   std::string error;     // the decoder's message (file named) when undecodable
   double decode_ms = 0.0;
@@ -57,6 +58,7 @@ class FramePrefetcher {
   ImagePreprocessor preprocessor_;
   int first_, last_;
   std::size_t capacity_;
+  bool keep_linear_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<PrefetchedFrame> queue_;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/util/median.h"
+#include "pipelines/frontend/exposure_compensation.h"
 #include "pipelines/frontend/keyframe_policy.h"
 #include "pipelines/frontend/landmark_triangulator.h"
 #include "pipelines/frontend/tracking_loss_monitor.h"
@@ -43,7 +44,8 @@ FrameTracker::FrameTracker(const FrontendOptions& options, const PinholeRadtanCa
       camera_(camera),
       klt_(options, camera.width()),
       detector_(options, camera.width(), camera.height()),
-      error_scale_(options.errorScale(camera.width())) {
+      error_scale_(options.errorScale(camera.width())),
+      equaliser_(options, camera.width(), camera.height()) {
   options_.validate();
   pose_options_.ransac_threshold_px = options.pnp_threshold_px * error_scale_;
   pose_options_.ransac_iterations = options.pnp_ransac_iterations;
@@ -164,6 +166,25 @@ void FrameTracker::finish() {
   loss_reasons_.emplace(reference_frame_, "initialisation failed: " + attempt);
 }
 
+ImagePyramid FrameTracker::pyramidToTrackInto(const PrefetchedFrame& frame, const ImagePyramid& own,
+                                              const std::vector<cv::Point2f>& points,
+                                              const std::vector<cv::Point2f>& guesses) {
+  if (!options_.compensate_gain || last_linear_.empty() || frame.linear.empty() ||
+      last_linear_.size() != frame.linear.size()) {
+    return own;
+  }
+  // Boxes a KLT window wide either side of the point: much larger than the
+  // guesses' error, small enough to stay on the seabed the track sees.
+  const RelativeGain gain = estimateRelativeGain(last_linear_, frame.linear, points, guesses, klt_.windowPx());
+  const double step_db = std::abs(gain.db());
+  if (gain.samples == 0 || step_db < options_.gain_compensation_min_db || step_db < 3.0 * gain.sigma_db) {
+    return own;
+  }
+  ++gain_compensated_frames_;
+  largest_gain_step_db_ = std::max(largest_gain_step_db_, step_db);
+  return klt_.buildPyramid(equaliser_.equalise(compensateGain(frame.linear, gain.ratio)));
+}
+
 // ---------------------------------------------------------------------------
 // Initialisation
 
@@ -194,6 +215,7 @@ void FrameTracker::startReference(const PrefetchedFrame& frame, FrameRecord& rec
     reference_points_[track.id] = {toEigen(track.pixel), track.normalized};
   }
   last_pyramid_ = pyramid;
+  last_linear_ = frame.linear;
   record.status = FrameStatus::initialising;
   record.tracked = int(tracks_.size());
 }
@@ -210,7 +232,8 @@ void FrameTracker::processInitialising(const PrefetchedFrame& frame, FrameRecord
     points.push_back(track.pixel);
     guesses.push_back(track.pixel + track.velocity);
   }
-  const std::vector<bool> good = klt_.track(last_pyramid_, pyramid, points, guesses, tracked);
+  const std::vector<bool> good =
+      klt_.track(last_pyramid_, pyramidToTrackInto(frame, pyramid, points, guesses), points, guesses, tracked);
   std::vector<Track> survivors;
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
     if (!good[i]) continue;
@@ -222,6 +245,7 @@ void FrameTracker::processInitialising(const PrefetchedFrame& frame, FrameRecord
   }
   tracks_ = std::move(survivors);
   last_pyramid_ = pyramid;
+  last_linear_ = frame.linear;
   record.tracked = int(tracks_.size());
   record.status = FrameStatus::initialising;
   stepMs(record, FrontendStep::track) += watch.lapMs();
@@ -452,7 +476,8 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
       if (tracks_[i].landmark < 0) guesses[i] = tracks_[i].pixel + shift;
     }
   }
-  const std::vector<bool> good = klt_.track(last_pyramid_, pyramid, points, guesses, tracked);
+  const std::vector<bool> good =
+      klt_.track(last_pyramid_, pyramidToTrackInto(frame, pyramid, points, guesses), points, guesses, tracked);
   std::vector<Track> candidates;
   candidates.reserve(tracks_.size());
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
@@ -505,6 +530,7 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
     if (keep[i]) tracks_.push_back(std::move(candidates[i]));
   }
   last_pyramid_ = pyramid;
+  last_linear_ = frame.linear;
   failed_frames_ = 0;
   record.posed = true;
   record.T_F_C = estimate.T_F_C;

@@ -48,6 +48,7 @@
 #include "pipelines/frontend/frame_prefetcher.h"
 #include "pipelines/frontend/frontend_options.h"
 #include "pipelines/frontend/frontend_result.h"
+#include "pipelines/frontend/image_preprocessor.h"
 #include "pipelines/frontend/klt_tracker.h"
 #include "pipelines/frontend/local_bundle_adjuster.h"
 #include "pipelines/frontend/visual_map.h"
@@ -92,6 +93,10 @@ class FrameTracker {
   const std::vector<FrameObservation>& frameObservations() const { return frame_observations_; }
   // Moves them out (the tracker keeps none), for the runner.
   std::vector<FrameObservation> takeFrameObservations() { return std::exchange(frame_observations_, {}); }
+  // Frames brought to the last frame's exposure before tracking (a gain
+  // step, exposure_compensation.h), and the largest step among them (dB).
+  int gainCompensatedFrames() const { return gain_compensated_frames_; }
+  double largestGainStepDb() const { return largest_gain_step_db_; }
 
  private:
   struct Sighting {
@@ -128,6 +133,13 @@ class FrameTracker {
   void updateMotion(double t, const SE3d& T_S_C);
   std::vector<Track> detectNewTracks(const cv::Mat& gray, int keyframe_id, int* count);
   bool undistort(const cv::Point2f& pixel, Eigen::Vector2d& normalized) const;
+  // The pyramid KLT tracks into from last_pyramid_: the frame's own, or,
+  // when the frame's exposure differs from the last tracked frame's (a gain
+  // step measured at the tracks, exposure_compensation.h), the frame brought
+  // to that exposure.
+  ImagePyramid pyramidToTrackInto(const PrefetchedFrame& frame, const ImagePyramid& own,
+                                  const std::vector<cv::Point2f>& points,
+                                  const std::vector<cv::Point2f>& guesses);
 
   FrontendOptions options_;
   PinholeRadtanCamera camera_;
@@ -149,6 +161,10 @@ class FrameTracker {
   std::vector<Track> tracks_;
   int next_track_id_ = 0;
   ImagePyramid last_pyramid_;   // of the last frame tracked into (posed, or the init reference chain)
+  cv::Mat last_linear_;         // its image before CLAHE (compensate_gain only)
+  ImagePreprocessor equaliser_; // CLAHE of a gain-compensated frame
+  int gain_compensated_frames_ = 0;
+  double largest_gain_step_db_ = 0.0;
   int failed_frames_ = 0;       // consecutive frames not posed while tracking
 
   // Initialisation.

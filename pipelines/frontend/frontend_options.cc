@@ -48,6 +48,9 @@ void FrontendOptions::validate() const {
     invalid("min_contrast_dn", min_contrast_dn, "a finite number >= 0");
   }
   fraction("max_saturated_fraction", max_saturated_fraction);
+  if (!(gain_compensation_min_db >= 0.0 && std::isfinite(gain_compensation_min_db))) {
+    invalid("gain_compensation_min_db", gain_compensation_min_db, "a finite number >= 0");
+  }
   atLeast("min_corners", min_corners, 8);
   atLeast("klt_window_px", klt_window_px, 5);
   atLeast("klt_pyramid_levels", klt_pyramid_levels, 0);

@@ -94,6 +94,7 @@ std::string FrontendResult::summary() const {
   std::snprintf(memory, sizeof(memory), ", peak memory %.0f MB", peak_memory_mb);
   text << memory;
   if (!lamp_light_note.empty()) text << "\n  " << lamp_light_note;
+  if (!gain_note.empty()) text << "\n  " << gain_note;
   for (const auto& loss : losses) {
     text << "\n  lost frames " << loss.first_frame << "-" << loss.last_frame << ": " << loss.reason;
   }

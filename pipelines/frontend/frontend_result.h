@@ -130,6 +130,9 @@ struct FrontendResult {
   // Whether the lamps' light was divided out before tracking, from how many
   // frames, and why not (lamp_light_field.h); empty when not run.
   std::string lamp_light_note;
+  // How many frames were brought to the last frame's exposure before
+  // tracking (gain steps, exposure_compensation.h); empty when switched off.
+  std::string gain_note;
 
   int posedFrameCount() const;
   // One paragraph: frames posed, keyframes, landmarks, losses, speed.

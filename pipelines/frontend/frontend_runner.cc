@@ -662,6 +662,13 @@ FrontendResult runFrontend(const Survey& survey, const FrontendOptions& options,
     }
   }
   tracker.finish();
+  if (options.compensate_gain) {
+    char note[160];
+    std::snprintf(note, sizeof(note),
+                  "gain steps compensated before tracking: %d frames (largest step %.2f dB)",
+                  tracker.gainCompensatedFrames(), tracker.largestGainStepDb());
+    result.gain_note = note;
+  }
   if (tracker.segments().empty()) {
     std::ostringstream message;
     message << "the front-end never initialised on frames " << first << "-" << last

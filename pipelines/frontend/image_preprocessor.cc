@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "pipelines/frontend/exposure_compensation.h"
 #include "pipelines/frontend/lamp_light_field.h"
 
 namespace hsmap {
@@ -31,13 +32,21 @@ cv::Mat ImagePreprocessor::grey(const cv::Mat& bgr) {
   return gray;
 }
 
-cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality) const {
-  cv::Mat gray = grey(bgr);
-  if (quality != nullptr) *quality = measure(gray);
-  if (!lamp_light_field_.empty()) gray = removeLampLight(gray, lamp_light_field_);
-  if (!use_clahe_) return gray;
+cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear) const {
+  const cv::Mat raw = grey(bgr);
+  if (quality != nullptr) *quality = measure(raw);
+  cv::Mat gray = lamp_light_field_.empty() ? raw : removeLampLight(raw, lamp_light_field_);
+  if (linear != nullptr) {
+    *linear = gray.clone();
+    linear->setTo(kSaturatedDn, raw >= 250);  // the same level as ImageQuality's
+  }
+  return equalise(gray);
+}
+
+cv::Mat ImagePreprocessor::equalise(const cv::Mat& linear) const {
+  if (!use_clahe_) return linear;
   cv::Mat equalised;
-  clahe_->apply(gray, equalised);
+  clahe_->apply(linear, equalised);
   return equalised;
 }
 

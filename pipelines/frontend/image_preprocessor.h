@@ -37,8 +37,15 @@ class ImagePreprocessor {
                     cv::Mat lamp_light_field = {});
 
   // Grey image to track on (CLAHE applied when enabled); `quality`, when not
-  // null, receives the measures of the raw grey image.
-  cv::Mat process(const cv::Mat& bgr, ImageQuality* quality) const;
+  // null, receives the measures of the raw grey image; `linear`, when not
+  // null, the grey image before CLAHE (lamp light removed), in which a gain
+  // step is a pure factor, with every pixel saturated in the camera (>= 250
+  // DN) set to kSaturatedDn (exposure_compensation.h).
+  cv::Mat process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear = nullptr) const;
+
+  // CLAHE of a `linear` image when enabled, else the image itself: the last
+  // step of process().
+  cv::Mat equalise(const cv::Mat& linear) const;
 
   // The 8-bit grey image of an 8-bit BGR (or already grey) frame, before
   // any correction; throws std::invalid_argument for other channel counts.
