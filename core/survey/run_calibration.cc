@@ -26,7 +26,7 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
   }
   const StrictYamlMap root(file, document, "", 1,
                            {"format", "variant", "T_C_U", "time_offset_s", "time_offset_sigma_s",
-                            "uhi_camera", "warnings"});
+                            "uhi_camera", "rgb_camera", "warnings"});
   const std::string format = root.text("format");
   if (format != RunCalibration::kFormat) {
     root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
@@ -55,6 +55,18 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
     estimate.distortion = {distortion[0], distortion[1]};
     estimate.sigma = readPushbroomSigma(camera, "sigma");
     calibration.uhi_camera = estimate;
+  }
+  if (root.has("rgb_camera")) {
+    const StrictYamlMap camera = root.map("rgb_camera", {"fx", "fy", "cx", "cy", "distortion", "sigma"});
+    RgbCameraEstimate estimate;
+    estimate.fx = camera.positiveNumberUpTo("fx", kMaxFocalPx);
+    estimate.fy = camera.positiveNumberUpTo("fy", kMaxFocalPx);
+    estimate.cx = camera.numberInRange("cx", -kMaxFocalPx, kMaxFocalPx);
+    estimate.cy = camera.numberInRange("cy", -kMaxFocalPx, kMaxFocalPx);
+    const std::vector<double> distortion = camera.numbers("distortion", 5);
+    for (std::size_t i = 0; i < 5; ++i) estimate.distortion[i] = distortion[i];
+    estimate.sigma = readPinholeRadtanSigma(camera, "sigma");
+    calibration.rgb_camera = estimate;
   }
   calibration.warnings = readTextList(root, document["warnings"], "warnings");
   return calibration;
@@ -106,6 +118,21 @@ std::string emitDocument(const RunCalibration& calibration) {
     emitPushbroomSigma(out, camera.sigma);
     out << YAML::EndMap;
   }
+  if (calibration.rgb_camera) {
+    const RgbCameraEstimate& camera = *calibration.rgb_camera;
+    out << YAML::Key << "rgb_camera" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    for (const auto& [key, value] : {std::pair<const char*, double>{"fx", camera.fx}, {"fy", camera.fy},
+                                     {"cx", camera.cx}, {"cy", camera.cy}}) {
+      out << YAML::Key << key << YAML::Value;
+      emitNumber(out, value);
+    }
+    out << YAML::Key << "distortion" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (double k : camera.distortion) emitNumber(out, k);
+    out << YAML::EndSeq;
+    out << YAML::Key << "sigma" << YAML::Value;
+    emitPinholeRadtanSigma(out, camera.sigma);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "warnings" << YAML::Value;
   if (calibration.warnings.empty()) {
     out << YAML::Flow;  // `warnings: []`
@@ -125,6 +152,15 @@ std::string emitDocument(const RunCalibration& calibration) {
 PushbroomParameters UhiCameraEstimate::appliedTo(PushbroomParameters survey_camera) const {
   survey_camera.f = f;
   survey_camera.cx = cx;
+  survey_camera.distortion = distortion;
+  return survey_camera;
+}
+
+PinholeRadtanParameters RgbCameraEstimate::appliedTo(PinholeRadtanParameters survey_camera) const {
+  survey_camera.fx = fx;
+  survey_camera.fy = fy;
+  survey_camera.cx = cx;
+  survey_camera.cy = cy;
   survey_camera.distortion = distortion;
   return survey_camera;
 }

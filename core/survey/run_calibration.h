@@ -15,9 +15,13 @@
 //                sigma: {f: ..., cx: ..., distortion: [s1, s2]}}
 //                                        optional: present when the run estimated the UHI's
 //                                        intrinsics (a sigma of 0: held at survey.yaml's)
+//   rgb_camera: {fx: ..., fy: ..., cx: ..., cy: ..., distortion: [k1, k2, p1, p2, k3],
+//                sigma: {fx: ..., fy: ..., cx: ..., cy: ..., distortion: [5 sigmas]}}
+//                                        optional: present when the run estimated the RGB
+//                                        camera's intrinsics (georef's keyframe adjustment)
 //   warnings: []                         texts, e.g. a component the survey cannot determine
 //
-// A sigma that was not estimated is `null`; every key but uhi_camera is required (a sigma
+// A sigma that was not estimated is `null`; every key but uhi_camera and rgb_camera is required (a sigma
 // may be null, not absent), so a truncated file is never read as "not
 // estimated". Sigmas are finite and >= 0. Rotations follow survey_config.h
 // (norm within 1e-3 of 1, normalised; one unit to double precision is kept
@@ -54,6 +58,20 @@ struct UhiCameraEstimate {
   PushbroomParameters appliedTo(PushbroomParameters survey_camera) const;
 };
 
+// The RGB intrinsics a run estimated (survey.yaml's rgb.camera keys without
+// `model`, `width` and `height`, which the survey states) and their 1-sigma.
+struct RgbCameraEstimate {
+  double fx = 0.0;
+  double fy = 0.0;
+  double cx = 0.0;
+  double cy = 0.0;
+  std::array<double, 5> distortion{0.0, 0.0, 0.0, 0.0, 0.0};
+  PinholeRadtanSigma sigma;
+
+  // `survey_camera` (its model and image size) with these intrinsics.
+  PinholeRadtanParameters appliedTo(PinholeRadtanParameters survey_camera) const;
+};
+
 struct RunCalibration {
   static constexpr const char* kFormat = "hsmap-calibration/1";
   std::string variant;          // one of runVariants() (run_variants.h)
@@ -63,6 +81,7 @@ struct RunCalibration {
   double time_offset_s = 0.0;                          // d
   std::optional<double> time_offset_sigma_s;
   std::optional<UhiCameraEstimate> uhi_camera;  // nullopt: survey.yaml's uhi.camera was used
+  std::optional<RgbCameraEstimate> rgb_camera;  // nullopt: survey.yaml's rgb.camera was used
   std::vector<std::string> warnings;
 };
 

@@ -93,6 +93,63 @@ TEST_F(RunCalibrationTest, TheEstimatedUhiCameraRoundTripsAndIsOptional) {
                    "line 11, key uhi_camera.f: expected a number > 0, got -3");
 }
 
+TEST_F(RunCalibrationTest, TheEstimatedRgbCameraRoundTripsAndIsOptional) {
+  RunCalibration calibration = exampleCalibration();
+  RgbCameraEstimate camera;
+  camera.fx = 808.125;
+  camera.fy = 807.5;
+  camera.cx = 483.25;
+  camera.cy = 269.75;
+  camera.distortion = {-0.021, 0.004, 0.0, 0.0, 0.0};
+  camera.sigma.fx = 0.61;
+  camera.sigma.fy = 0.6;
+  camera.sigma.cx = 0.2;
+  camera.sigma.cy = 0.25;
+  camera.sigma.distortion = {0.0011, 0.0009, 0.0, 0.0, 0.0};  // p1, p2, k3 held
+  calibration.rgb_camera = camera;
+  writeRunCalibration(path_, calibration);
+  EXPECT_NE(TempFolder::read(path_).find(
+                "rgb_camera: {fx: 808.125, fy: 807.5, cx: 483.25, cy: 269.75, distortion: [-0.021, 0.004, 0, 0, 0], "
+                "sigma: {fx: 0.61, fy: 0.6, cx: 0.2, cy: 0.25, distortion: [0.0011, 9e-04, 0, 0, 0]}}\n"),
+            std::string::npos)
+      << TempFolder::read(path_);
+  const RunCalibration read = readRunCalibration(path_);
+  ASSERT_TRUE(read.rgb_camera);
+  EXPECT_EQ(read.rgb_camera->fx, camera.fx);
+  EXPECT_EQ(read.rgb_camera->fy, camera.fy);
+  EXPECT_EQ(read.rgb_camera->cx, camera.cx);
+  EXPECT_EQ(read.rgb_camera->cy, camera.cy);
+  EXPECT_EQ(read.rgb_camera->distortion, camera.distortion);
+  EXPECT_EQ(read.rgb_camera->sigma.fx, camera.sigma.fx);
+  EXPECT_EQ(read.rgb_camera->sigma.cy, camera.sigma.cy);
+  EXPECT_EQ(read.rgb_camera->sigma.distortion, camera.sigma.distortion);
+  PinholeRadtanParameters survey_camera;
+  survey_camera.width = 960;
+  survey_camera.height = 540;
+  survey_camera.fx = 800.0;
+  const PinholeRadtanParameters applied = read.rgb_camera->appliedTo(survey_camera);
+  EXPECT_EQ(applied.width, 960);
+  EXPECT_EQ(applied.height, 540);
+  EXPECT_EQ(applied.fx, camera.fx);
+  EXPECT_EQ(applied.distortion, camera.distortion);
+  // Without it (not estimated), none is read.
+  writeRunCalibration(path_, exampleCalibration());
+  EXPECT_FALSE(readRunCalibration(path_).rgb_camera);
+  // Bad values are named by their key.
+  writeRunCalibration(path_, calibration);
+  testing::replaceInFile(path_, "fy: 807.5,", "fy: 0,");
+  expectInputError([&] { readRunCalibration(path_); }, path_,
+                   "line 11, key rgb_camera.fy: expected a number > 0, got 0");
+  writeRunCalibration(path_, calibration);
+  testing::replaceInFile(path_, "[-0.021, 0.004, 0, 0, 0], sigma", "[-0.021, 0.004], sigma");
+  expectInputError([&] { readRunCalibration(path_); }, path_,
+                   "line 11, key rgb_camera.distortion: expected a list of 5 numbers, got a list of 2");
+  writeRunCalibration(path_, calibration);
+  testing::replaceInFile(path_, "sigma: {fx: 0.61,", "sigma: {fx: -1,");
+  expectInputError([&] { readRunCalibration(path_); }, path_,
+                   "line 11, key rgb_camera.sigma.fx: expected a number in [0, 1e+06], got -1");
+}
+
 TEST_F(RunCalibrationTest, TheWrittenFileLooksAsDocumented) {
   RunCalibration calibration = exampleCalibration();
   calibration.variant = "sequential";
