@@ -5,9 +5,9 @@
 // says a camera with a sigma is self-calibrated; a sigma of 0 (the default of
 // every absent key) holds that parameter fixed.
 //
-// This version of hsmap reads and validates them but holds every intrinsic
-// fixed (loadSurvey warns when a sigma is > 0); the `joint` problem is where
-// they will become priors.
+// They become priors where the intrinsics are estimated: the UHI's in the
+// `joint` problem (docs/JOINT.md), the RGB camera's in the geo-referencing
+// bundle adjustment (docs/GEOREF.md); loadSurvey says so when a sigma is > 0.
 //
 // Ranges (each optional inside the map, default 0):
 //   f, fx, fy, cx, cy: pixels, in [0, 1e6] (as the camera's own values)

@@ -133,13 +133,15 @@ void checkLampResponseBandCount(const Survey& survey) {
 // survey.yaml asks for self-calibrated intrinsics (a camera_sigma > 0):
 // said once, where the survey's warnings are, what each camera gets. The
 // UHI's are estimated by the `joint` variant only (docs/JOINT.md); the RGB
-// camera's are held fixed by this version.
+// camera's by the geo-referencing bundle adjustment of `sequential` and
+// `joint` (docs/GEOREF.md).
 std::vector<std::string> intrinsicsWarnings(const SurveyConfig& config) {
   std::vector<std::string> warnings;
   if (config.rgb.camera_sigma && config.rgb.camera_sigma->asksForCalibration()) {
     warnings.push_back(
-        "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics), but this version of hsmap "
-        "holds the intrinsics fixed: rgb.camera used as given");
+        "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics): the sequential and joint "
+        "variants estimate them in the geo-referencing bundle adjustment; planar and stacked use rgb.camera "
+        "as given");
   }
   if (config.uhi.camera_sigma && config.uhi.camera_sigma->asksForCalibration()) {
     warnings.push_back(

@@ -53,13 +53,13 @@ std::string distortionText(const std::array<double, N>& values) {
 
 // The intrinsics' sigmas are read but not used yet: the line says so, next
 // to the values, and the survey's warnings say it once more.
-constexpr const char* kHeldFixed = " (intrinsics held fixed in this version)";
+constexpr const char* kEstimatedByGeoref = " (intrinsics estimated by the geo-referencing bundle adjustment)";
 constexpr const char* kEstimatedByJoint = " (intrinsics estimated by the joint variant)";
 
 void printRgbSigma(std::ostream& out, const PinholeRadtanSigma& sigma) {
   out << "       camera_sigma: fx " << fixedDecimals(sigma.fx, 2) << ", fy " << fixedDecimals(sigma.fy, 2)
       << ", cx " << fixedDecimals(sigma.cx, 2) << ", cy " << fixedDecimals(sigma.cy, 2)
-      << ", distortion " << distortionText(sigma.distortion) << kHeldFixed << "\n";
+      << ", distortion " << distortionText(sigma.distortion) << kEstimatedByGeoref << "\n";
 }
 
 void printUhiSigma(std::ostream& out, const PushbroomSigma& sigma) {

@@ -1,8 +1,11 @@
 #include "pipelines/georef/georef_bundle_adjuster.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <memory>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/geometry/camera_parameters.h"
@@ -11,7 +14,11 @@
 #include "core/graph/values.h"
 #include "factors/ins_attitude_factor.h"
 #include "factors/ins_position_factor.h"
+#include "factors/pinhole_intrinsics_prior_factor.h"
 #include "factors/reprojection_factor.h"
+#include "factors/reprojection_with_intrinsics_factor.h"
+#include "solvers/graph_problem.h"
+#include "solvers/marginal_covariance.h"
 
 namespace hsmap {
 namespace {
@@ -41,15 +48,96 @@ std::vector<double> whitenedFixResiduals(const Values& values, const std::vector
   return whitened;
 }
 
+constexpr const char* kIntrinsicNames[PinholeRadtanCamera::kNumIntrinsics] = {
+    "fx", "fy", "cx", "cy", "distortion[0]", "distortion[1]", "distortion[2]", "distortion[3]", "distortion[4]"};
+
+PinholeRadtanParameters withIntrinsics(PinholeRadtanParameters camera, const Eigen::VectorXd& k) {
+  camera.fx = k[0];
+  camera.fy = k[1];
+  camera.cx = k[2];
+  camera.cy = k[3];
+  for (int i = 0; i < 5; ++i) camera.distortion[std::size_t(i)] = k[4 + i];
+  return camera;
+}
+
+// The intrinsics' 1-sigma from their marginal covariance (over the free
+// ones, in order) and the ones the survey cannot separate: a correlation
+// above the threshold with another estimated intrinsic, or a 1-sigma hardly
+// below the prior's.
+void checkIntrinsics(const Eigen::MatrixXd& covariance, const std::array<double, 9>& prior_sigma,
+                     const GeorefBundleOptions& options, RgbIntrinsicsEstimate& estimate) {
+  std::vector<int> free;
+  for (int i = 0; i < PinholeRadtanCamera::kNumIntrinsics; ++i) {
+    if (prior_sigma[std::size_t(i)] > 0.0) free.push_back(i);
+  }
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    estimate.sigma[std::size_t(free[a])] = std::sqrt(std::max(0.0, covariance(Eigen::Index(a), Eigen::Index(a))));
+  }
+  estimate.sigma_known = true;
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    const int i = free[a];
+    double worst = 0.0;
+    int worst_other = -1;
+    for (std::size_t b = 0; b < free.size(); ++b) {
+      if (b == a) continue;
+      const double denominator = std::sqrt(std::max(0.0, covariance(Eigen::Index(a), Eigen::Index(a))) *
+                                           std::max(0.0, covariance(Eigen::Index(b), Eigen::Index(b))));
+      if (!(denominator > 0.0)) continue;
+      const double correlation = covariance(Eigen::Index(a), Eigen::Index(b)) / denominator;
+      if (std::abs(correlation) > std::abs(worst)) {
+        worst = correlation;
+        worst_other = free[b];
+      }
+    }
+    const std::string name = std::string("rgb_camera.") + kIntrinsicNames[i];
+    std::ostringstream reason;
+    if (worst_other >= 0 && std::abs(worst) > options.inseparable_correlation) {
+      reason << name << " cannot be separated from rgb_camera." << kIntrinsicNames[worst_other]
+             << " on this survey (correlation " << worst << ")";
+      estimate.inseparable.push_back(reason.str());
+    } else if (estimate.sigma[std::size_t(i)] > options.weak_fraction_of_prior * prior_sigma[std::size_t(i)]) {
+      reason << name << " is hardly determined by this survey (its 1-sigma " << estimate.sigma[std::size_t(i)]
+             << " is more than " << options.weak_fraction_of_prior << " of the prior's "
+             << prior_sigma[std::size_t(i)] << ": e.g. a focal length against the scene's distance over a "
+             << "flat seabed at one altitude); it stays close to survey.yaml's value";
+      estimate.inseparable.push_back(reason.str());
+    }
+  }
+}
+
 }  // namespace
+
+std::array<double, 9> rgbIntrinsicsOf(const PinholeRadtanParameters& camera) {
+  return {camera.fx, camera.fy, camera.cx, camera.cy, camera.distortion[0], camera.distortion[1],
+          camera.distortion[2], camera.distortion[3], camera.distortion[4]};
+}
+
+std::array<double, 9> rgbIntrinsicsOf(const PinholeRadtanSigma& sigma) {
+  return {sigma.fx, sigma.fy, sigma.cx, sigma.cy, sigma.distortion[0], sigma.distortion[1],
+          sigma.distortion[2], sigma.distortion[3], sigma.distortion[4]};
+}
 
 GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsFixLink>& links,
                                           const InsBodyTrack& ins, const SE3d& T_B_C,
                                           const InsNoise& noise,
                                           const PinholeRadtanParameters& camera,
-                                          const GeorefBundleOptions& options) {
+                                          const GeorefBundleOptions& options,
+                                          const std::optional<PinholeRadtanSigma>& intrinsics_sigma) {
   GeorefBundleReport report;
   Values values;
+  const bool estimates_intrinsics = intrinsics_sigma && intrinsics_sigma->asksForCalibration();
+  const std::array<double, 9> prior_intrinsics = rgbIntrinsicsOf(camera);
+  const std::array<double, 9> prior_sigma =
+      estimates_intrinsics ? rgbIntrinsicsOf(*intrinsics_sigma) : std::array<double, 9>{};
+  GraphProblemOptions problem_options;
+  if (estimates_intrinsics) {
+    values.insertVector(K(0), Eigen::Map<const Eigen::VectorXd>(prior_intrinsics.data(), 9));
+    const std::vector<int> held = PinholeIntrinsicsPriorFactor::heldParameters(prior_sigma);
+    if (!held.empty()) problem_options.constant_components[K(0)] = held;
+  }
+  // With the intrinsics estimated, the last round's problem stays for the covariance.
+  std::unique_ptr<FactorGraph> last_graph;
+  std::unique_ptr<GraphProblem> last_problem;
   std::set<int> used_keyframes;
   std::vector<int> landmark_ids;
   std::vector<bool> adjusted_landmark(map.landmarks().size(), false);
@@ -87,13 +175,19 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
   solver.function_tolerance = 1e-7;
 
   for (int round = 0;; ++round) {
-    FactorGraph graph;
+    auto graph_owner = std::make_unique<FactorGraph>();
+    FactorGraph& graph = *graph_owner;
     report.reprojection_factors = report.position_factors = report.attitude_factors = 0;
     for (int k : used_keyframes) {
       for (const KeyframeObservation& o : map.keyframe(k).observations) {
         if (!adjusted_landmark[std::size_t(o.landmark_id)]) continue;
-        graph.emplace<ReprojectionFactor>(X(std::uint64_t(k)), L(std::uint64_t(o.landmark_id)),
-                                          o.pixel, camera, pixel_noise, huber);
+        if (estimates_intrinsics) {
+          graph.emplace<ReprojectionWithIntrinsicsFactor>(X(std::uint64_t(k)), L(std::uint64_t(o.landmark_id)),
+                                                          K(0), o.pixel, pixel_noise, huber);
+        } else {
+          graph.emplace<ReprojectionFactor>(X(std::uint64_t(k)), L(std::uint64_t(o.landmark_id)),
+                                            o.pixel, camera, pixel_noise, huber);
+        }
         ++report.reprojection_factors;
       }
     }
@@ -109,7 +203,16 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
                                        attitude_noise);
       ++report.attitude_factors;
     }
-    const SolveReport solved = solve(graph, values, solver);
+    SolveReport solved;
+    if (estimates_intrinsics) {
+      graph.emplace<PinholeIntrinsicsPriorFactor>(K(0), prior_intrinsics, prior_sigma);
+      last_problem.reset();
+      last_problem = std::make_unique<GraphProblem>(graph, values, problem_options);
+      last_graph = std::move(graph_owner);
+      solved = solve(*last_problem, solver);
+    } else {
+      solved = solve(graph, values, solver);
+    }
     if (round == 0) report.first_solve = solved;
     report.last_solve = solved;
     ++report.solves;
@@ -145,9 +248,27 @@ GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsF
 
   for (int k : used_keyframes) map.keyframe(k).T_F_C = poseOf(values, k);
   for (int l : landmark_ids) map.landmark(l).p_F = values.point(L(std::uint64_t(l)));
+  if (estimates_intrinsics) {
+    RgbIntrinsicsEstimate estimate;
+    estimate.camera = withIntrinsics(camera, values.vector(K(0)));
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      CovarianceOptions covariance_options;
+      covariance_options.num_threads = options.num_threads;
+      // Only K(0) is asked for: the landmarks go by their Schur complement,
+      // the reduced system is the keyframes' poses and K(0).
+      covariance_options.algorithm = CovarianceOptions::Algorithm::landmark_schur;
+      const Eigen::MatrixXd covariance = jointMarginalCovariance(*last_problem, {K(0)}, covariance_options);
+      checkIntrinsics(covariance, prior_sigma, options, estimate);
+    } catch (const std::exception& error) {
+      estimate.covariance_error = error.what();
+    }
+    estimate.covariance_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.intrinsics = estimate;
+  }
   // Observations the solve left far from their landmark are dropped, so the
   // frames posed against this map next do not meet them.
-  const PinholeRadtanCamera lens(camera);
+  const PinholeRadtanCamera lens(report.intrinsics ? report.intrinsics->camera : camera);
   std::vector<std::pair<int, int>> far;  // (keyframe, landmark)
   for (int k : used_keyframes) {
     const Keyframe& keyframe = map.keyframe(k);

@@ -28,20 +28,37 @@
 // solved again, for at most `max_fix_rejection_rounds` rounds. Each
 // rejected fix is reported with its ins.csv line and its distance from the
 // adjusted track.
+//
+// The RGB intrinsics (survey.yaml's rgb.camera_sigma with some sigma > 0,
+// docs/GEOREF.md "The RGB camera's intrinsics"): one more variable, K(0),
+// [fx fy cx cy k1 k2 p1 p2 k3], shared by every observation
+// (ReprojectionWithIntrinsicsFactor instead of ReprojectionFactor), with a
+// prior at rgb.camera of those sigmas (PinholeIntrinsicsPriorFactor); a
+// parameter whose sigma is 0 is held constant. After the last solve their
+// 1-sigma comes from the marginal covariance (the landmarks' Schur
+// complement), and a parameter the survey cannot separate is named: a
+// correlation above `inseparable_correlation` with another estimated
+// intrinsic, or a 1-sigma above `weak_fraction_of_prior` of its prior's
+// (the data hardly inform it: e.g. the focal length against the scene's
+// distance over a flat seabed flown level at one altitude, which scales
+// the image the same way). Without sigmas the adjustment is the one it
+// always was, to the bit.
 
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/geometry/camera_parameters.h"
 #include "core/geometry/se3.h"
+#include "core/survey/camera_sigma.h"
 #include "core/survey/ins_body_track.h"
 #include "pipelines/georef/ins_noise.h"
 #include "pipelines/frontend/visual_map.h"
 #include "solvers/graph_solver.h"
 
 namespace hsmap {
-
-struct PinholeRadtanParameters;
 
 // One INS fix attached to a keyframe.
 struct InsFixLink {
@@ -58,6 +75,23 @@ struct GeorefBundleOptions {
   int max_iterations = 50;
   int num_threads = 0;  // 0: the process's thread budget (hsmap run --threads)
   double outlier_px = 3.0;  // observations beyond this after the solve are removed from the map
+  // Estimated RGB intrinsics (see above): the warnings' thresholds.
+  double inseparable_correlation = 0.95;
+  double weak_fraction_of_prior = 0.5;
+};
+
+// The RGB intrinsics the adjustment estimated (rgb.camera_sigma given).
+struct RgbIntrinsicsEstimate {
+  PinholeRadtanParameters camera;  // survey.yaml's rgb.camera with the estimated values
+  // 1-sigma, [fx fy cx cy k1 k2 p1 p2 k3]; 0 for a held parameter. Not
+  // known when the covariance could not be computed (`covariance_error`).
+  std::array<double, 9> sigma{};
+  bool sigma_known = false;
+  std::string covariance_error;
+  double covariance_s = 0.0;
+  // One text per parameter the survey cannot separate, e.g. "rgb_camera.fx
+  // cannot be separated from rgb_camera.fy on this survey (correlation 0.97)".
+  std::vector<std::string> inseparable;
 };
 
 struct RejectedFix {
@@ -81,15 +115,24 @@ struct GeorefBundleReport {
   double position_correlation_factor = 1.0;
   int removed_observations = 0;
   std::vector<RejectedFix> rejected;  // in the bundle adjustment
+  std::optional<RgbIntrinsicsEstimate> intrinsics;  // with rgb.camera_sigma
 };
 
 // Adjusts `map` (poses T_F_C and points p_F, here in W) in place. Keyframes
 // observing no landmark and landmarks with fewer than 2 observations stay
 // as they are. Throws std::runtime_error when the solve is not usable.
+// `intrinsics_sigma` (survey.yaml's rgb.camera_sigma): with some sigma > 0
+// the intrinsics are estimated too (report.intrinsics); absent or all 0,
+// `camera` is held as given.
 GeorefBundleReport adjustGeoreferencedMap(VisualMap& map, const std::vector<InsFixLink>& links,
                                           const InsBodyTrack& ins, const SE3d& T_B_C,
                                           const InsNoise& noise,
                                           const PinholeRadtanParameters& camera,
-                                          const GeorefBundleOptions& options);
+                                          const GeorefBundleOptions& options,
+                                          const std::optional<PinholeRadtanSigma>& intrinsics_sigma = std::nullopt);
+
+// The 9 intrinsics of `camera` / `sigma` in the factors' order [fx fy cx cy k1 k2 p1 p2 k3].
+std::array<double, 9> rgbIntrinsicsOf(const PinholeRadtanParameters& camera);
+std::array<double, 9> rgbIntrinsicsOf(const PinholeRadtanSigma& sigma);
 
 }  // namespace hsmap

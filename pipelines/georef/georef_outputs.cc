@@ -48,12 +48,49 @@ PoseSource poseSource(const CsvTable& table, const CsvTable::Row& row, std::size
 
 }  // namespace
 
+std::vector<std::string> rgbCameraWarnings(const GeorefResult& result) {
+  std::vector<std::string> warnings;
+  if (!result.rgb_camera) return warnings;
+  warnings.push_back(
+      "rgb_camera estimated by the geo-referencing bundle adjustment (survey.yaml's rgb.camera_sigma); the "
+      "later stages use it");
+  if (!result.rgb_camera->sigma_known) {
+    warnings.push_back("rgb_camera: no covariance (" + result.rgb_camera->covariance_error +
+                       "): its sigmas are written as 0");
+  }
+  for (const std::string& warning : result.rgb_camera->inseparable) warnings.push_back(warning);
+  return warnings;
+}
+
+void carryRgbCamera(const RunCalibration& from, RunCalibration& to) {
+  to.rgb_camera = from.rgb_camera;
+  std::erase_if(to.warnings, [](const std::string& warning) { return warning.starts_with("rgb_camera"); });
+  for (const std::string& warning : from.warnings) {
+    if (warning.starts_with("rgb_camera")) to.warnings.push_back(warning);
+  }
+}
+
 RunCalibration georefCalibration(const GeorefResult& result, std::vector<std::string> warnings) {
   RunCalibration calibration;
   calibration.variant = result.variant;
   calibration.T_C_U.rotation = result.T_C_U.q;
   calibration.T_C_U.translation_m = result.T_C_U.t;
   calibration.time_offset_s = result.time_offset_s;
+  if (result.rgb_camera) {
+    const RgbIntrinsicsEstimate& estimate = *result.rgb_camera;
+    RgbCameraEstimate camera;
+    camera.fx = estimate.camera.fx;
+    camera.fy = estimate.camera.fy;
+    camera.cx = estimate.camera.cx;
+    camera.cy = estimate.camera.cy;
+    camera.distortion = estimate.camera.distortion;
+    camera.sigma.fx = estimate.sigma[0];
+    camera.sigma.fy = estimate.sigma[1];
+    camera.sigma.cx = estimate.sigma[2];
+    camera.sigma.cy = estimate.sigma[3];
+    for (std::size_t i = 0; i < 5; ++i) camera.sigma.distortion[i] = estimate.sigma[4 + i];
+    calibration.rgb_camera = camera;
+  }
   if (warnings.empty()) {
     warnings.push_back("T_C_U and time_offset_s are the survey.yaml guesses: the " + result.variant +
                        " variant does not estimate them");
@@ -61,6 +98,7 @@ RunCalibration georefCalibration(const GeorefResult& result, std::vector<std::st
   if (result.placement) {
     if (const std::string scale = scaleWarning(*result.placement); !scale.empty()) warnings.push_back(scale);
   }
+  for (const std::string& warning : rgbCameraWarnings(result)) warnings.push_back(warning);
   calibration.warnings = std::move(warnings);
   return calibration;
 }
@@ -116,6 +154,19 @@ GeorefResult readGeorefOutputs(const fs::path& folder) {
   result.variant = calibration.variant;
   result.T_C_U = SE3d(calibration.T_C_U.rotation, calibration.T_C_U.translation_m);
   result.time_offset_s = calibration.time_offset_s;
+  if (calibration.rgb_camera) {
+    const RgbCameraEstimate& camera = *calibration.rgb_camera;
+    RgbIntrinsicsEstimate estimate;
+    // model, width and height are survey.yaml's (RgbCameraEstimate::appliedTo).
+    estimate.camera.fx = camera.fx;
+    estimate.camera.fy = camera.fy;
+    estimate.camera.cx = camera.cx;
+    estimate.camera.cy = camera.cy;
+    estimate.camera.distortion = camera.distortion;
+    estimate.sigma = rgbIntrinsicsOf(camera.sigma);
+    estimate.sigma_known = true;
+    result.rgb_camera = estimate;
+  }
 
   const std::vector<TimedPose> frames = readTimedPoseTable(folder / georef_files::frames);
   const std::vector<LinePose> lines = readLinePoseTable(folder / georef_files::lines);

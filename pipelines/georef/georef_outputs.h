@@ -51,8 +51,19 @@ inline constexpr const char* summary = "summary.txt";
 inline constexpr const char* map_placement = "map_placement.yaml";
 }  // namespace georef_files
 
+// The calibration.yaml warnings about result.rgb_camera (none without it):
+// that it was estimated, and what the survey could not separate; each
+// starts with "rgb_camera".
+std::vector<std::string> rgbCameraWarnings(const GeorefResult& result);
+
+// `to` with `from`'s rgb_camera and its warnings (those starting with
+// "rgb_camera", in place of any `to` had): a later stage's calibration.yaml (refine, joint) carries
+// the georef stage's RGB intrinsics, which it does not change.
+void carryRgbCamera(const RunCalibration& from, RunCalibration& to);
+
 // The calibration.yaml written for `result` (its T_C_U and d; `warnings`
 // when given, else that the variant does not estimate them).
+
 RunCalibration georefCalibration(const GeorefResult& result, std::vector<std::string> warnings = {});
 
 // Writes `folder` (see above). `calibration` is written as calibration.yaml

@@ -66,6 +66,19 @@ std::string GeorefResult::summary() const {
     out << "  " << b.removed_observations
         << " observations beyond 3 px after the solve removed from the map\n";
   }
+  if (rgb_camera) {
+    const PinholeRadtanParameters& c = rgb_camera->camera;
+    const auto& s = rgb_camera->sigma;
+    out << "  RGB intrinsics estimated (rgb.camera_sigma): fx " << c.fx << ", fy " << c.fy << ", cx " << c.cx
+        << ", cy " << c.cy << ", distortion [" << c.distortion[0] << ", " << c.distortion[1] << ", "
+        << c.distortion[2] << ", " << c.distortion[3] << ", " << c.distortion[4] << "]";
+    if (rgb_camera->sigma_known) {
+      out << " (1-sigma " << s[0] << ", " << s[1] << ", " << s[2] << ", " << s[3] << ", [" << s[4] << ", " << s[5]
+          << ", " << s[6] << ", " << s[7] << ", " << s[8] << "]; covariance " << fixedDecimals(rgb_camera->covariance_s, 2)
+          << " s)";
+    }
+    out << "\n";
+  }
   if (placement) {
     const MapPlacement& p = *placement;
     out << "  map placement (maximum likelihood on " << p.fixes << " INS fixes, "

@@ -49,6 +49,10 @@ struct GeorefResult {
   VisualMap map_W;
   SE3d T_C_U;                        // extrinsic used for the lines
   double time_offset_s = 0.0;        // d used for the lines
+  // sequential with rgb.camera_sigma: the RGB intrinsics the bundle
+  // adjustment estimated (written to calibration.yaml's rgb_camera, read
+  // back by readGeorefOutputs; the later stages use them).
+  std::optional<RgbIntrinsicsEstimate> rgb_camera;
   std::optional<InsAlignment> alignment;
   std::optional<GeorefBundleReport> bundle;
   // sequential: how well the INS places and scales the map (map_placement.h).

@@ -158,7 +158,6 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   const InsBodyTrack ins(survey, options.heading_window_s);
   const InsConfig& ins_config = survey.config.ins;
   const SE3d T_B_C(ins_config.T_B_C.rotation, ins_config.T_B_C.translation_m);
-  const PinholeRadtanCamera camera(survey.config.rgb.camera);
 
   // 1. The front-end's trajectory onto the INS.
   VisionFrames vision = posedFrames(frontend);
@@ -206,7 +205,22 @@ GeorefResult runSequentialGeoref(const Survey& survey, const FrontendResult& fro
   for (const Keyframe& k : map.keyframes()) T_W_K_before.push_back(k.T_F_C);
   if (progress) progress("bundle adjustment", 0, 1);
   result.bundle = adjustGeoreferencedMap(map, links, ins, T_B_C, noise, survey.config.rgb.camera,
-                                         options.bundle);
+                                         options.bundle, survey.config.rgb.camera_sigma);
+  // With rgb.camera_sigma the adjustment estimated the intrinsics: every
+  // frame is posed through them, and the later stages use them
+  // (georef/calibration.yaml's rgb_camera).
+  PinholeRadtanParameters rgb_camera = survey.config.rgb.camera;
+  if (result.bundle->intrinsics) {
+    const RgbIntrinsicsEstimate& estimate = *result.bundle->intrinsics;
+    rgb_camera = estimate.camera;
+    result.rgb_camera = estimate;
+    if (!estimate.sigma_known) {
+      result.warnings.push_back("rgb_camera: no covariance (" + estimate.covariance_error +
+                                "): its sigmas are written as 0");
+    }
+    for (const std::string& warning : estimate.inseparable) result.warnings.push_back(warning);
+  }
+  const PinholeRadtanCamera camera(rgb_camera);
   for (const RejectedFix& r : result.bundle->rejected) result.rejected_fixes.push_back(r);
   result.placement = placeMapOnIns(map, links, result.bundle->rejected, ins, T_B_C, noise);
   if (const std::string warning = scaleWarning(*result.placement); !warning.empty()) {

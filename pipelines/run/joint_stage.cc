@@ -236,6 +236,8 @@ void runJointStage(const StageContext& context, const JointStageOptions& options
       break;
     }
   }
+  // The RGB intrinsics are georef's (rgb.camera_sigma), with its warnings.
+  carryRgbCamera(readRunCalibration(context.run / stage_folders::georef / georef_files::calibration), calibration);
   writeGeorefOutputs(folder, posed, calibration);
   writePly(folder / stage_folders::mesh_ply, ply);
   out << "joint: wrote " << folder.string() << "/ (the trajectory, calibration.yaml, the map, mesh.ply: "

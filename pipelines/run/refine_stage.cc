@@ -88,6 +88,8 @@ void runRefineStage(const StageContext& context, const RefineStageOptions& optio
   for (const LinePose& line : line_poses) lines_timed.push_back({line.t, line.T});
   writeLinePoseTable(staging / georef_files::lines, line_poses);
   writeTumTrajectory(staging / georef_files::lines_tum, lines_timed);
+  // The RGB intrinsics are georef's (rgb.camera_sigma), with its warnings.
+  carryRgbCamera(readRunCalibration(georef / georef_files::calibration), calibration);
   writeRunCalibration(staging / georef_files::calibration, calibration);
   writeTextAtomically(staging / georef_files::summary, summary.str());
   fs::remove_all(folder);

@@ -20,6 +20,8 @@
 #include "core/util/stage_timer.h"
 #include "core/util/tee_stream.h"
 #include "core/util/thread_budget.h"
+#include "pipelines/georef/georef_outputs.h"
+#include "pipelines/run/estimated_rgb_camera.h"
 #include "pipelines/run/published_calibration.h"
 #include "pipelines/run/stage_fingerprints.h"
 #include "pipelines/report/run_report.h"
@@ -155,7 +157,7 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   const auto started = std::chrono::steady_clock::now();
 
   auto load_start = std::chrono::steady_clock::now();
-  const Survey survey = loadSurvey(options.survey);
+  Survey survey = loadSurvey(options.survey);  // its RGB camera: georef's estimate after georef
   record.stages.push_back({"load", secondsSince(load_start), peakResidentMemoryMb()});
   out << "survey '" << survey.config.name << "': " << survey.rgb.frameCount() << " RGB frames, "
       << survey.line_times.size() << " scan lines, " << survey.ins.fixes.size() << " INS fixes ("
@@ -252,6 +254,10 @@ int runStagesLogged(const RunOptions& options, std::ostream& out, std::ostream& 
   const StageContext context{survey, run, options.variant, out};
   for (int i = 0; i <= last; ++i) {
     const StageDefinition& stage = stageDefinition(stages[std::size_t(i)]);
+    // The stages after georef use the RGB camera it estimated (rgb.camera_sigma).
+    if (i > 0 && std::string(stageDefinition(stages[std::size_t(i - 1)]).name) == stage_folders::georef) {
+      useEstimatedRgbCamera(survey, run / stage_folders::georef / georef_files::calibration, out);
+    }
     if (i < first) {
       const StageRecordFile& done = *records[std::size_t(i)];
       out << "stage " << stage.name << ": up to date, skipped (ran in " << secondsText(done.time_s)

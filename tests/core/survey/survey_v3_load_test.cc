@@ -28,9 +28,10 @@ std::string v3SurveyYamlForTheSample() {
   return text.replace(at, 13, "samples: 64");
 }
 
-const std::string kRgbHeldFixedWarning =
-    "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics), but this version of hsmap "
-    "holds the intrinsics fixed: rgb.camera used as given";
+const std::string kRgbGeorefWarning =
+    "survey.yaml gives rgb.camera_sigma (self-calibrated intrinsics): the sequential and joint "
+    "variants estimate them in the geo-referencing bundle adjustment; planar and stacked use rgb.camera "
+    "as given";
 const std::string kUhiJointWarning =
     "survey.yaml gives uhi.camera_sigma (self-calibrated intrinsics): the joint variant estimates "
     "them; the other variants use uhi.camera as given";
@@ -61,7 +62,7 @@ TEST_F(SurveyV3LoadTest, TheContractExampleLoads) {
   EXPECT_EQ(survey.lamp_response_dn.back(), 2700.0);
   ASSERT_TRUE(survey.config.rgb.camera_sigma.has_value());
   ASSERT_TRUE(survey.config.uhi.camera_sigma.has_value());
-  EXPECT_EQ(survey.warnings, (std::vector<std::string>{kRgbHeldFixedWarning, kUhiJointWarning}));
+  EXPECT_EQ(survey.warnings, (std::vector<std::string>{kRgbGeorefWarning, kUhiJointWarning}));
 }
 
 TEST_F(SurveyV3LoadTest, TheWarningNamesOnlyTheCamerasWhoseSigmaAsksForCalibration) {
@@ -121,7 +122,7 @@ TEST_F(SurveyV3LoadTest, InspectPrintsTheSigmasTheLightsAndTheWarning) {
   for (const std::string& expected :
        {std::string("; image list ") + (survey_ / "rgb/frames.csv").string() +
             "\n       camera_sigma: fx 8.00, fy 8.00, cx 4.00, cy 4.00, distortion [0.02, 0.02, "
-            "0.001, 0.001, 0.02] (intrinsics held fixed in this version)\n  UHI: ",
+            "0.001, 0.001, 0.02] (intrinsics estimated by the geo-referencing bundle adjustment)\n  UHI: ",
         std::string(" s\n       camera_sigma: f 15.00, cx 3.00, distortion [0.02, 0.01] "
                     "(intrinsics estimated by the joint variant)\n  INS: "),
         "  INS: position and attitude\n  lights: 2 lamps; response " + response_.string() +
@@ -129,7 +130,7 @@ TEST_F(SurveyV3LoadTest, InspectPrintsTheSigmasTheLightsAndTheWarning) {
             "    lamp 0: position [-0.300, -0.300, 0.000] m, axis [0.000, 0.000, 1.000] (in C)\n"
             "    lamp 1: position [0.300, -0.300, 0.000] m, axis [0.000, 0.000, 1.000] (in C)\n"
             "streams:\n",
-        "warnings:\n  - " + kRgbHeldFixedWarning + "\n  - " + kUhiJointWarning + "\n"}) {
+        "warnings:\n  - " + kRgbGeorefWarning + "\n  - " + kUhiJointWarning + "\n"}) {
     EXPECT_NE(printed.find(expected), std::string::npos) << "missing '" << expected << "' in\n"
                                                          << printed;
   }
