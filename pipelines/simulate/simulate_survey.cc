@@ -84,6 +84,18 @@ void perturbCalibration(const SimulationConfig& config, SurveyConfig& survey) {
   survey.uhi.camera.cx += truth.error_uhi_cx_px;
   for (std::size_t i = 0; i < 2; ++i) survey.uhi.camera.distortion[i] += truth.error_uhi_distortion[i];
   survey.uhi.camera_sigma = truth.uhi_camera_sigma;
+  // The same for the RGB camera; applied only when asked, so that a survey
+  // without these settings keeps its bytes (a -0 distortion stays -0).
+  if (truth.error_rgb_focal_rel != 0.0) {
+    survey.rgb.camera.fx *= 1.0 + truth.error_rgb_focal_rel;
+    survey.rgb.camera.fy *= 1.0 + truth.error_rgb_focal_rel;
+  }
+  if (truth.error_rgb_cx_px != 0.0) survey.rgb.camera.cx += truth.error_rgb_cx_px;
+  if (truth.error_rgb_cy_px != 0.0) survey.rgb.camera.cy += truth.error_rgb_cy_px;
+  for (std::size_t i = 0; i < 5; ++i) {
+    if (truth.error_rgb_distortion[i] != 0.0) survey.rgb.camera.distortion[i] += truth.error_rgb_distortion[i];
+  }
+  survey.rgb.camera_sigma = truth.rgb_camera_sigma;
   // Priors that do not contradict the guess: at least as wide as its error.
   survey.uhi.sigma_rotation_deg = std::max(2.0, truth.error_rotation_deg);
   survey.uhi.sigma_translation_m = std::max(0.05, truth.error_translation_m);

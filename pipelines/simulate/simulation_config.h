@@ -107,6 +107,14 @@ struct SimulatedCalibrationConfig {
   double error_uhi_cx_px = 0.0;                  // cx_guess = cx + e
   std::array<double, 2> error_uhi_distortion{0.0, 0.0};  // k_guess = k + e
   std::optional<PushbroomSigma> uhi_camera_sigma;
+  // The same for survey.yaml's RGB camera (rgb.camera): fx and fy both
+  // scaled by (1 + e), cx + e, cy + e, [k1, k2, p1, p2, k3] + e; the 1-sigma
+  // written as rgb.camera_sigma (absent: none, held fixed).
+  double error_rgb_focal_rel = 0.0;
+  double error_rgb_cx_px = 0.0;
+  double error_rgb_cy_px = 0.0;
+  std::array<double, 5> error_rgb_distortion{0.0, 0.0, 0.0, 0.0, 0.0};
+  std::optional<PinholeRadtanSigma> rgb_camera_sigma;
 };
 
 struct SimulatedOpticsConfig {

@@ -225,7 +225,8 @@ void readCalibration(const StrictYamlMap& root, SimulationConfig& config) {
   const StrictYamlMap calibration = root.map(
       "calibration", {"T_C_U", "T_B_C", "time_offset_s", "error_rotation_deg", "error_translation_m",
                       "error_time_offset_s", "error_uhi_focal_rel", "error_uhi_cx_px", "error_uhi_distortion",
-                      "uhi_camera_sigma"});
+                      "uhi_camera_sigma", "error_rgb_focal_rel", "error_rgb_cx_px", "error_rgb_cy_px",
+                      "error_rgb_distortion", "rgb_camera_sigma"});
   SimulatedCalibrationConfig& c = config.calibration;
   if (calibration.has("T_C_U")) {
     c.T_C_U = readRigidTransform(calibration.map("T_C_U", {"rotation_wxyz", "translation_m"}));
@@ -243,6 +244,13 @@ void readCalibration(const StrictYamlMap& root, SimulationConfig& config) {
       "error_uhi_distortion", 2, {c.error_uhi_distortion[0], c.error_uhi_distortion[1]});
   c.error_uhi_distortion = {distortion[0], distortion[1]};
   if (calibration.has("uhi_camera_sigma")) c.uhi_camera_sigma = readPushbroomSigma(calibration, "uhi_camera_sigma");
+  c.error_rgb_focal_rel = calibration.numberInRange("error_rgb_focal_rel", -0.5, 0.5, c.error_rgb_focal_rel);
+  c.error_rgb_cx_px = calibration.numberInRange("error_rgb_cx_px", -1e4, 1e4, c.error_rgb_cx_px);
+  c.error_rgb_cy_px = calibration.numberInRange("error_rgb_cy_px", -1e4, 1e4, c.error_rgb_cy_px);
+  const std::vector<double> rgb_distortion = calibration.numbers(
+      "error_rgb_distortion", 5, std::vector<double>(c.error_rgb_distortion.begin(), c.error_rgb_distortion.end()));
+  for (std::size_t i = 0; i < 5; ++i) c.error_rgb_distortion[i] = rgb_distortion[i];
+  if (calibration.has("rgb_camera_sigma")) c.rgb_camera_sigma = readPinholeRadtanSigma(calibration, "rgb_camera_sigma");
 }
 
 void readIns(const StrictYamlMap& root, SimulationConfig& config) {

@@ -20,6 +20,7 @@
 #include "core/io/ply_io.h"
 #include "core/raycast/mesh_ray_caster.h"
 #include "core/survey/survey.h"
+#include "core/util/input_error.h"
 #include "core/survey/survey_summary.h"
 #include "core/survey/survey_truth.h"
 #include "pipelines/simulate/simulate_survey.h"
@@ -150,6 +151,60 @@ TEST(SimulatedSurveySettings, UhiIntrinsicsGuessIsTheTruthMovedByTheStatedErrors
   EXPECT_EQ(survey_truth.calibration.uhi_camera.cx, truth.cx);
   // The cube is rendered through the true camera: the same bytes as tiny's.
   EXPECT_EQ(testing::readText(temp / "survey" / "uhi" / "cube.raw"), testing::readText(tiny.folder / "uhi" / "cube.raw"));
+}
+
+// The RGB intrinsics' guess (issue 44), as the UHI's: survey.yaml's
+// rgb.camera is the truth moved by the stated errors, with the stated
+// sigmas; the truth and the rendered frames keep the true camera.
+TEST(SimulatedSurveySettings, RgbIntrinsicsGuessIsTheTruthMovedByTheStatedErrors) {
+  const auto& tiny = testing::tinySurvey();
+  testing::TempFolder temp("rgb_intrinsics");
+  testing::writeText(temp / "config.yaml",
+                     "format: hsmap-simulation/1\n"
+                     "preset: tiny\n"
+                     "calibration:\n"
+                     "  error_rgb_focal_rel: 0.01\n"
+                     "  error_rgb_cx_px: 3\n"
+                     "  error_rgb_cy_px: -2\n"
+                     "  error_rgb_distortion: [0.01, 0, 0, 0, 0]\n"
+                     "  rgb_camera_sigma: {fx: 8, fy: 8, cx: 4, cy: 4, distortion: [0.02, 0.02, 0, 0, 0]}\n");
+  const SimulationConfig config = readSimulationConfig(temp / "config.yaml");
+  std::ostringstream log;
+  simulateSurvey(config, temp / "survey", log);
+  const Survey survey = loadSurvey(temp / "survey");
+  const PinholeRadtanParameters& truth = tiny.config.rgb.camera;
+  const PinholeRadtanParameters& guess = survey.config.rgb.camera;
+  EXPECT_DOUBLE_EQ(guess.fx, truth.fx * 1.01);
+  EXPECT_DOUBLE_EQ(guess.fy, truth.fy * 1.01);
+  EXPECT_DOUBLE_EQ(guess.cx, truth.cx + 3.0);
+  EXPECT_DOUBLE_EQ(guess.cy, truth.cy - 2.0);
+  EXPECT_DOUBLE_EQ(guess.distortion[0], truth.distortion[0] + 0.01);
+  for (std::size_t i = 1; i < 5; ++i) EXPECT_EQ(guess.distortion[i], truth.distortion[i]) << i;
+  ASSERT_TRUE(survey.config.rgb.camera_sigma.has_value());
+  EXPECT_EQ(survey.config.rgb.camera_sigma->fx, 8.0);
+  EXPECT_EQ(survey.config.rgb.camera_sigma->cy, 4.0);
+  EXPECT_EQ(survey.config.rgb.camera_sigma->distortion[1], 0.02);
+  EXPECT_EQ(survey.config.rgb.camera_sigma->distortion[4], 0.0);
+  const SurveyTruth survey_truth = loadSurveyTruth(temp / "survey");
+  EXPECT_EQ(survey_truth.calibration.rgb_camera.fx, truth.fx);
+  EXPECT_EQ(survey_truth.calibration.rgb_camera.cx, truth.cx);
+  EXPECT_EQ(survey_truth.calibration.rgb_camera.distortion, truth.distortion);
+  // The frames are rendered through the true camera: the same bytes as tiny's.
+  EXPECT_EQ(testing::readText(temp / "survey" / "rgb" / "frame_000010.png"), testing::readText(tiny.folder / "rgb" / "frame_000010.png"));
+  // A bad setting is named by its key.
+  testing::writeText(temp / "bad.yaml",
+                     "format: hsmap-simulation/1\n"
+                     "preset: tiny\n"
+                     "calibration:\n"
+                     "  error_rgb_distortion: [0.01, 0]\n");
+  try {
+    readSimulationConfig(temp / "bad.yaml");
+    ADD_FAILURE() << "a 2-entry error_rgb_distortion was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("key calibration.error_rgb_distortion: expected a list of 5 numbers, got a list of 2"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(SimulatedSurveySettings, TurnedTrackHeadsThatWayAndAlwaysSeesTheSeabed) {
