@@ -15,7 +15,7 @@ Better metricDirection(const std::string& key) {
       "mesh_accuracy_m", "ortho_mean_shift_m", "ortho_registration_rmse_m", "ortho_scale_error",
       "ortho_sam_deg", "ortho_pixel_error_m", "ortho_pixel_error_abs_m", "reflectance_sam_deg",
       "reflectance_rmse", "reflectance_gain_free_rmse", "water_attenuation_rmse_per_m", "uhi_focal_error_rel",
-      "uhi_cx_error_px", "peak_rss_mb", "mesh_accuracy_attitude_aligned_m",
+      "uhi_cx_error_px", "rgb_focal_error_rel", "rgb_cx_error_px", "rgb_cy_error_px", "peak_rss_mb", "mesh_accuracy_attitude_aligned_m",
       "uhi_position_rmse_positions_aligned_m", "uhi_rotation_rmse_positions_aligned_deg",
       "mesh_accuracy_positions_aligned_m", "wall_time_s"};
   if (higher.contains(key)) return Better::higher;

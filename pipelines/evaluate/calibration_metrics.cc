@@ -1,5 +1,6 @@
 #include "pipelines/evaluate/calibration_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pipelines/evaluate/trajectory_metrics.h"
@@ -22,6 +23,19 @@ CalibrationErrors compareCalibration(const RunCalibration& estimate, const Pushb
   for (std::size_t i = 0; i < 2; ++i) {
     errors.uhi_distortion_error[i] = std::abs(camera.distortion[i] - true_camera.distortion[i]);
   }
+  return errors;
+}
+
+CalibrationErrors compareCalibration(const RunCalibration& estimate, const PushbroomParameters& survey_uhi_camera,
+                                     const PinholeRadtanParameters& survey_rgb_camera, const TruthCalibration& truth) {
+  CalibrationErrors errors = compareCalibration(estimate, survey_uhi_camera, truth);
+  const PinholeRadtanParameters camera =
+      estimate.rgb_camera ? estimate.rgb_camera->appliedTo(survey_rgb_camera) : survey_rgb_camera;
+  const PinholeRadtanParameters& true_camera = truth.rgb_camera;
+  errors.rgb_focal_error_rel = std::max(std::abs(camera.fx - true_camera.fx) / true_camera.fx,
+                                        std::abs(camera.fy - true_camera.fy) / true_camera.fy);
+  errors.rgb_cx_error_px = std::abs(camera.cx - true_camera.cx);
+  errors.rgb_cy_error_px = std::abs(camera.cy - true_camera.cy);
   return errors;
 }
 

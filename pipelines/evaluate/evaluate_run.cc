@@ -14,6 +14,7 @@
 #include "pipelines/evaluate/mesh_metrics.h"
 #include "pipelines/evaluate/ortho_metrics.h"
 #include "pipelines/evaluate/ortho_pixel_error.h"
+#include "pipelines/evaluate/reflectance_metrics.h"
 #include "pipelines/evaluate/trajectory_metrics.h"
 #include "pipelines/evaluate/view_distance.h"
 
@@ -30,11 +31,15 @@ void markNoReflectance(EvaluationMetrics& metrics) {
   }
 }
 
-// The UHI intrinsics the run used (calibration.yaml's uhi_camera, or
-// survey.yaml's) against the truth: they shape every variant's products.
+// The UHI and RGB intrinsics the run used (calibration.yaml's uhi_camera
+// and rgb_camera, or survey.yaml's) against the truth: they shape every
+// variant's products.
 void measureUhiIntrinsics(const EvaluationInputs& inputs, EvaluationMetrics& metrics) {
-  const CalibrationErrors errors =
-      compareCalibration(inputs.calibration, inputs.survey.config.uhi.camera, inputs.truth.calibration);
+  const CalibrationErrors errors = compareCalibration(inputs.calibration, inputs.survey.config.uhi.camera,
+                                                      inputs.survey.config.rgb.camera, inputs.truth.calibration);
+  metrics.rgb_focal_error_rel = MetricValue::of(errors.rgb_focal_error_rel);
+  metrics.rgb_cx_error_px = MetricValue::of(errors.rgb_cx_error_px);
+  metrics.rgb_cy_error_px = MetricValue::of(errors.rgb_cy_error_px);
   metrics.uhi_focal_error_rel = MetricValue::of(errors.uhi_focal_error_rel);
   metrics.uhi_cx_error_px = MetricValue::of(errors.uhi_cx_error_px);
   for (std::size_t i = 0; i < 2; ++i) metrics.uhi_distortion_error[i] = MetricValue::of(errors.uhi_distortion_error[i]);
@@ -60,6 +65,8 @@ EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
     *m = none;
   }
   measureUhiIntrinsics(inputs, metrics);
+  const MetricValue no_rgb = MetricValue::missing(kStackedUsesNoRgbCamera);
+  for (MetricValue* m : {&metrics.rgb_focal_error_rel, &metrics.rgb_cx_error_px, &metrics.rgb_cy_error_px}) *m = no_rgb;
   markNoReflectance(metrics);
   for (const StageRecord& stage : inputs.run.stages) metrics.timings_s.emplace_back(stage.name, stage.time_s);
   metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
@@ -162,6 +169,16 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
     metrics.ortho_patches = summary.substr(0, summary.find('\n'));
   }
   metrics.ortho_matches = ortho.matches;
+  // The reflectance product and the water estimate, when the run made them
+  // (the radiometry stage; docs/RADIOMETRY.md), spectra compared at the
+  // ortho's registered position.
+  const ReflectanceMetrics reflectance =
+      measureRunReflectance(inputs.run_folder, inputs.truth.reflectance_header_path,
+                            inputs.truth.calibration.water_attenuation_per_m, inputs.survey.origin, ortho.matches);
+  metrics.reflectance_sam_deg = reflectance.reflectance_sam_deg;
+  metrics.reflectance_rmse = reflectance.reflectance_rmse;
+  metrics.reflectance_gain_free_rmse = reflectance.reflectance_gain_free_rmse;
+  metrics.water_attenuation_rmse_per_m = reflectance.water_attenuation_rmse_per_m;
   metrics.ortho_pixel_error_m = pixel_error.ortho_pixel_error_m;
   metrics.ortho_pixel_error_abs_m = pixel_error.ortho_pixel_error_abs_m;
   if (pixel_error.patch_pixels > 0) metrics.ortho_pixel_counts = pixel_error.summary();

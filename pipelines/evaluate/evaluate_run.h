@@ -29,6 +29,8 @@ namespace hsmap {
 // Why every metric of a `stacked` run is null.
 inline constexpr const char* kStackedHasNoPoses =
     "the stacked variant poses nothing: scan lines side by side, no map position";
+// Why its RGB intrinsics' errors are null.
+inline constexpr const char* kStackedUsesNoRgbCamera = "the stacked variant uses no RGB camera";
 
 EvaluationMetrics evaluateRun(const EvaluationInputs& inputs);
 

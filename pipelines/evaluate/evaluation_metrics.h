@@ -66,6 +66,11 @@ struct EvaluationMetrics {
   MetricValue uhi_focal_error_rel;
   MetricValue uhi_cx_error_px;
   std::array<MetricValue, 2> uhi_distortion_error;
+  // The RGB camera's intrinsics against the truth (calibration_metrics.h;
+  // not named by the contract: hsmap's keys, in the UHI ones' style).
+  MetricValue rgb_focal_error_rel;
+  MetricValue rgb_cx_error_px;
+  MetricValue rgb_cy_error_px;
   // For the table only (not in metrics.json): the pixel error's counts
   // (OrthoPixelError::summary()), empty when it was not measured.
   std::string ortho_pixel_counts;

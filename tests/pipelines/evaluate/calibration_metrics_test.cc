@@ -57,5 +57,43 @@ TEST(CalibrationMetrics, TheRunsEstimateOfTheIntrinsicsIsScoredWhenItHasOne) {
   EXPECT_NEAR(errors.uhi_distortion_error[1], 0.0001, 1e-12);
 }
 
+PinholeRadtanParameters rgbCamera(double fx, double fy, double cx, double cy) {
+  PinholeRadtanParameters p;
+  p.width = 960;
+  p.height = 540;
+  p.fx = fx;
+  p.fy = fy;
+  p.cx = cx;
+  p.cy = cy;
+  return p;
+}
+
+// The RGB intrinsics (hsmap's keys beside the contract's UHI ones): the
+// survey's camera without an estimate, the run's with one; the focal error
+// is the worse of fx and fy.
+TEST(CalibrationMetrics, TheRgbCameraTheRunUsedIsScored) {
+  TruthCalibration t = truth();
+  t.rgb_camera = rgbCamera(800.0, 800.0, 479.5, 269.5);
+  RunCalibration run;
+  run.T_C_U.translation_m = Eigen::Vector3d(0.1, 0.0, 0.0);
+  run.time_offset_s = 0.015;
+  const PinholeRadtanParameters guess = rgbCamera(808.0, 804.0, 482.5, 267.5);
+  CalibrationErrors errors = compareCalibration(run, camera(1500.0, 959.5, 0.01, -0.002), guess, t);
+  EXPECT_NEAR(errors.rgb_focal_error_rel, 0.01, 1e-12);
+  EXPECT_NEAR(errors.rgb_cx_error_px, 3.0, 1e-12);
+  EXPECT_NEAR(errors.rgb_cy_error_px, 2.0, 1e-12);
+  EXPECT_NEAR(errors.uhi_focal_error_rel, 0.0, 1e-12);
+  RgbCameraEstimate estimate;
+  estimate.fx = 800.4;
+  estimate.fy = 799.2;
+  estimate.cx = 479.7;
+  estimate.cy = 269.4;
+  run.rgb_camera = estimate;
+  errors = compareCalibration(run, camera(1500.0, 959.5, 0.01, -0.002), guess, t);
+  EXPECT_NEAR(errors.rgb_focal_error_rel, 0.001, 1e-12);
+  EXPECT_NEAR(errors.rgb_cx_error_px, 0.2, 1e-9);
+  EXPECT_NEAR(errors.rgb_cy_error_px, 0.1, 1e-9);
+}
+
 }  // namespace
 }  // namespace hsmap

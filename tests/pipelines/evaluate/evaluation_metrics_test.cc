@@ -39,6 +39,9 @@ EvaluationMetrics example() {
   metrics.uhi_focal_error_rel = MetricValue::of(0.002);
   metrics.uhi_cx_error_px = MetricValue::of(0.5);
   metrics.uhi_distortion_error = {MetricValue::of(0.001), MetricValue::of(0.0002)};
+  metrics.rgb_focal_error_rel = MetricValue::of(0.0004);
+  metrics.rgb_cx_error_px = MetricValue::of(0.25);
+  metrics.rgb_cy_error_px = MetricValue::missing("no RGB camera");
   metrics.timings_s = {{"frontend", 12.5}, {"geo \"ref\"", 3.25}, {"total", 15.75}};
   metrics.peak_rss_mb = MetricValue::of(300);
   metrics.ins_floor_rgb_ate_m = MetricValue::of(0.05);
@@ -82,6 +85,9 @@ TEST(EvaluationMetrics, JsonHasEveryKeyInTheContractsOrder) {
             "  \"uhi_focal_error_rel\": 0.002,\n"
             "  \"uhi_cx_error_px\": 0.5,\n"
             "  \"uhi_distortion_error\": [0.001, 2e-04],\n"
+            "  \"rgb_focal_error_rel\": 4e-04,\n"
+            "  \"rgb_cx_error_px\": 0.25,\n"
+            "  \"rgb_cy_error_px\": null,\n"
             "  \"timings_s\": {\"frontend\": 12.5, \"geo \\\"ref\\\"\": 3.25, \"total\": 15.75},\n"
             "  \"peak_rss_mb\": 300,\n"
             "  \"ins_floor_rgb_ate_m\": 0.05,\n"
@@ -135,6 +141,9 @@ TEST(EvaluationMetrics, TableShowsValuesUnitsTheInsFloorAndWhyAValueIsMissing) {
             "uhi_focal_error_rel                     0.002\n"
             "uhi_cx_error_px                         0.5           px\n"
             "uhi_distortion_error                    [0.001, 0.0002]\n"
+            "rgb_focal_error_rel                     0.0004\n"
+            "rgb_cx_error_px                         0.25          px\n"
+            "rgb_cy_error_px                         null          px                  no RGB camera\n"
             "timings_s.frontend                      12.5          s\n"
             "timings_s.geo \"ref\"                     3.25          s\n"
             "timings_s.total                         15.75         s\n"
