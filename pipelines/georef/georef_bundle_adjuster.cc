@@ -96,10 +96,15 @@ void checkIntrinsics(const Eigen::MatrixXd& covariance, const std::array<double,
              << " on this survey (correlation " << worst << ")";
       estimate.inseparable.push_back(reason.str());
     } else if (estimate.sigma[std::size_t(i)] > options.weak_fraction_of_prior * prior_sigma[std::size_t(i)]) {
+      // What it is most likely confounded with, for the reader.
+      const char* why = i < 2 ? ": the focal length trades against the distance to the seabed unless relief or "
+                                "changes of altitude and attitude separate them"
+                      : i < 4 ? ": the image centre trades against the map's horizontal placement, which the INS "
+                                "positions fix only to their noise, unless relief or attitude changes separate them"
+                              : "";
       reason << name << " is hardly determined by this survey (its 1-sigma " << estimate.sigma[std::size_t(i)]
              << " is more than " << options.weak_fraction_of_prior << " of the prior's "
-             << prior_sigma[std::size_t(i)] << ": e.g. a focal length against the scene's distance over a "
-             << "flat seabed at one altitude); it stays close to survey.yaml's value";
+             << prior_sigma[std::size_t(i)] << why << "); it stays close to survey.yaml's value";
       estimate.inseparable.push_back(reason.str());
     }
   }
