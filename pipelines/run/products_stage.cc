@@ -14,6 +14,8 @@
 #include "core/util/stage_timer.h"
 #include "pipelines/products/product_casting.h"
 #include "pipelines/products/stacked_products.h"
+#include "pipelines/radiometry/reflectance_ortho.h"
+#include "pipelines/run/radiometry_stage.h"
 
 namespace hsmap {
 
@@ -79,6 +81,29 @@ void runProductsStage(const StageContext& context, const ProductsStageOptions& o
   if (options.points) out << ", " << (folder / "points.ply").string();
   out << "\n";
   out << rgb_ortho.get();  // on_grid is called before the first tile of every cast
+
+  // Reflectance: the radiance ortho corrected with the radiometry stage's estimate.
+  const fs::path water_yaml = context.run / radiometry_files::folder / radiometry_files::water;
+  if (!survey.config.lights) {
+    out << "products: no reflectance: survey.yaml has no `lights` block (radiance products only)\n";
+  } else if (!fs::exists(water_yaml)) {
+    out << "products: no reflectance: the radiometry stage left no estimate (" << water_yaml.string() << ")\n";
+  } else {
+    SE3d T_C_U(survey.config.uhi.T_C_U.rotation, survey.config.uhi.T_C_U.translation_m);
+    if (fs::exists(calibration_yaml)) {
+      const RunCalibration calibration = readRunCalibration(calibration_yaml);
+      T_C_U = SE3d(calibration.T_C_U.rotation, calibration.T_C_U.translation_m);
+    }
+    ReflectanceOptions reflectance;
+    reflectance.write_geotiff = options.geotiff;
+    const ReflectanceReport reflectance_report =
+        writeReflectanceOrtho(folder, PushbroomCamera(uhi_camera), line_poses, mesh, *survey.config.lights, T_C_U,
+                              survey.lamp_response_dn, readWaterEstimate(water_yaml), reflectance);
+    out << reflectance_report.summary();
+    out << "wrote " << reflectance_report.hdr.string();
+    if (!reflectance_report.tif.empty()) out << ", " << reflectance_report.tif.string();
+    out << "\n";
+  }
 }
 
 }  // namespace hsmap

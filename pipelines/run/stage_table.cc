@@ -10,6 +10,7 @@
 #include "pipelines/run/georef_stage.h"
 #include "pipelines/run/joint_stage.h"
 #include "pipelines/run/products_stage.h"
+#include "pipelines/run/radiometry_stage.h"
 #include "pipelines/run/refine_stage.h"
 #include "pipelines/run/surface_stage.h"
 
@@ -82,6 +83,12 @@ const std::vector<StageDefinition>& definitions() {
                 formatDouble(j.strip_sigma_match_along_m) + "\n" + surfaceText(o);
        },
        [](const StageContext& c, const RunOptions& o) { runJointStage(c, o.joint, o.surface); }},
+      {StageId::radiometry, "radiometry", {radiometry_files::folder}, {}, {},
+       [](const RunOptions&) {
+         // The stage's options are its defaults (radiometric_observations.h, water_estimation.h).
+         return std::string("radiometry: cells 0.2 m, 600 lines, 400 points, backscatter estimated\n");
+       },
+       [](const StageContext& c, const RunOptions&) { runRadiometryStage(c); }},
       {StageId::products, "products", {"hyperspectral", "map/rgb_ortho.png", "map/rgb_ortho.tif"}, {},
        {"--ortho-pixel", "--no-geotiff", "--point-cell", "--no-points"},
        [](const RunOptions& o) {
@@ -109,10 +116,12 @@ bool ignoredBy(const std::string& option, Variant variant) {
 
 const std::vector<StageId>& variantStages(Variant variant) {
   using S = StageId;
-  static const std::vector<StageId> sequential = {S::frontend, S::georef, S::surface, S::refine, S::products};
-  static const std::vector<StageId> planar = {S::georef, S::surface, S::products};
+  static const std::vector<StageId> sequential = {S::frontend, S::georef, S::surface, S::refine, S::radiometry,
+                                                  S::products};
+  static const std::vector<StageId> planar = {S::georef, S::surface, S::radiometry, S::products};
   static const std::vector<StageId> stacked = {S::products};
-  static const std::vector<StageId> joint = {S::frontend, S::georef, S::surface, S::joint, S::products};
+  static const std::vector<StageId> joint = {S::frontend, S::georef, S::surface, S::joint, S::radiometry,
+                                             S::products};
   switch (variant) {
     case Variant::planar: return planar;
     case Variant::stacked: return stacked;

@@ -23,7 +23,7 @@
 
 namespace hsmap {
 
-enum class StageId { frontend, georef, surface, refine, joint, products };
+enum class StageId { frontend, georef, surface, refine, joint, radiometry, products };
 
 struct StageDefinition {
   StageId id;
