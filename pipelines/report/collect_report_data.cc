@@ -28,6 +28,11 @@ ReportData collectReportData(const fs::path& run) {
   std::unique_ptr<Survey> survey;
   try {
     survey = std::make_unique<Survey>(loadSurvey(data.survey_folder));
+    // The residuals through the RGB camera the run used: georef's estimate
+    // when survey.yaml gives rgb.camera_sigma (docs/GEOREF.md).
+    if (data.calibration && data.calibration->rgb_camera) {
+      survey->config.rgb.camera = data.calibration->rgb_camera->appliedTo(survey->config.rgb.camera);
+    }
     data.survey_name = survey->config.name;
     for (const std::string& warning : survey->warnings) data.warnings.insert(data.warnings.begin(), "survey: " + warning);
   } catch (const InputError& failure) {
