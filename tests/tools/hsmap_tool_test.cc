@@ -227,7 +227,7 @@ TEST_F(HsmapToolTest, RunFrontendOnTinyPosesEveryFrame) {
   EXPECT_EQ(unknown.exit_status, 1);
   EXPECT_EQ(unknown.err,
             "error: unknown stage 'mesh' for --until; the sequential variant runs frontend, georef, "
-            "surface, refine, products\n");
+            "surface, refine, radiometry, products\n");
   const RunResult surface = runHsmap(temp_, "run " + quoted(survey_.string()) + " --out " +
                                                 quoted(run_folder.string()) + " --surface poisson");
   EXPECT_EQ(surface.exit_status, 1);

@@ -83,9 +83,9 @@ class RunResume : public ::testing::Test {
 // the full run's products, byte for byte.
 TEST_F(RunResume, FromEachStageReproducesTheFullRunsProducts) {
   const std::map<std::string, std::vector<std::string>> variants = {
-      {"sequential", {"frontend", "georef", "surface", "refine", "products"}},
-      {"joint", {"frontend", "georef", "surface", "joint", "products"}},
-      {"planar", {"georef", "surface", "products"}},
+      {"sequential", {"frontend", "georef", "surface", "refine", "radiometry", "products"}},
+      {"joint", {"frontend", "georef", "surface", "joint", "radiometry", "products"}},
+      {"planar", {"georef", "surface", "radiometry", "products"}},
       {"stacked", {"products"}}};
   for (const auto& [variant, stages] : variants) {
     const fs::path out = temp_ / variant;
@@ -112,7 +112,7 @@ TEST_F(RunResume, ASecondRunSkipsEveryStageAndAChangedOptionRedoesItsStageAndThe
 
   const RunResult again = run(out, "");
   ASSERT_EQ(again.exit_status, 0) << again.err << again.out;
-  for (const char* stage : {"frontend", "georef", "surface", "refine", "products"}) {
+  for (const char* stage : {"frontend", "georef", "surface", "refine", "radiometry", "products"}) {
     EXPECT_NE(again.out.find("stage " + std::string(stage) + ": up to date, skipped"), std::string::npos)
         << stage << "\n" << again.out;
   }
