@@ -194,7 +194,8 @@ void tieResidualsOnGround(const std::vector<const JointTiePoint*>& ties, const s
 // the free intrinsics], and the ones the survey cannot separate: a
 // correlation above options.inseparable_correlation with a component of
 // T_C_U or d (cx against the rotation about the line's normal shifts every
-// sample alike over a flat seabed), or a 1-sigma hardly below the prior's.
+// sample alike over a flat seabed), and the ones it hardly determines: a
+// 1-sigma hardly below the prior's.
 void checkIntrinsics(const Eigen::MatrixXd& covariance, const JointInputs& in, const JointOptions& options,
                      JointResult& result) {
   constexpr int kOthers = 7;
@@ -223,9 +224,12 @@ void checkIntrinsics(const Eigen::MatrixXd& covariance, const JointInputs& in, c
              << " on this survey (correlation " << worst << "); it stays close to survey.yaml's value";
       result.inseparable_intrinsics.push_back(reason.str());
     } else if (sigma[std::size_t(i)] > options.weak_fraction_of_prior * prior) {
-      reason << name << " cannot be separated from T_C_U and d on this survey (its 1-sigma "
-             << sigma[std::size_t(i)] << " is more than " << options.weak_fraction_of_prior
-             << " of the prior's " << prior << "); it stays close to survey.yaml's value";
+      // Not tied to T_C_U or d above the threshold: the data simply say
+      // little about it (k2 over a line's few hundred pixels of r^4), so the
+      // warning says that, not that it trades against the extrinsic.
+      reason << name << " is hardly determined by this survey (its 1-sigma " << sigma[std::size_t(i)]
+             << " is more than " << options.weak_fraction_of_prior << " of the prior's " << prior
+             << "); it stays close to survey.yaml's value";
       result.inseparable_intrinsics.push_back(reason.str());
     }
     ++column;
