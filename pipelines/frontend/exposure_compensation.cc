@@ -9,16 +9,17 @@ namespace hsmap {
 namespace {
 
 // Mean of the box centred on `p`; false when the box leaves the image or
-// holds a saturated pixel.
-bool boxMean(const cv::Mat& image, const cv::Point2f& p, int half, double& mean) {
+// holds a saturated pixel (`saturated` non-zero; may be empty).
+bool boxMean(const cv::Mat& image, const cv::Mat& saturated, const cv::Point2f& p, int half, double& mean) {
   const int cx = static_cast<int>(std::lround(p.x)), cy = static_cast<int>(std::lround(p.y));
   if (!(std::isfinite(p.x) && std::isfinite(p.y))) return false;
   if (cx - half < 0 || cy - half < 0 || cx + half >= image.cols || cy + half >= image.rows) return false;
   long sum = 0;
   for (int y = cy - half; y <= cy + half; ++y) {
     const unsigned char* row = image.ptr<unsigned char>(y);
+    const unsigned char* mask = saturated.empty() ? nullptr : saturated.ptr<unsigned char>(y);
     for (int x = cx - half; x <= cx + half; ++x) {
-      if (row[x] >= kSaturatedDn) return false;
+      if (mask != nullptr && mask[x] != 0) return false;
       sum += row[x];
     }
   }
@@ -38,11 +39,17 @@ double medianOf(std::vector<double> values) {
 double RelativeGain::db() const { return 20.0 * std::log10(ratio); }
 
 RelativeGain estimateRelativeGain(const cv::Mat& previous, const cv::Mat& next,
+                                  const cv::Mat& previous_saturated, const cv::Mat& next_saturated,
                                   const std::vector<cv::Point2f>& points,
                                   const std::vector<cv::Point2f>& guesses, int half_box_px,
                                   double min_mean_dn, int min_samples) {
   if (previous.type() != CV_8UC1 || next.type() != CV_8UC1 || previous.size() != next.size()) {
     throw std::invalid_argument("estimateRelativeGain: two 8-bit grey images of one size expected");
+  }
+  for (const cv::Mat* mask : {&previous_saturated, &next_saturated}) {
+    if (!mask->empty() && (mask->type() != CV_8UC1 || mask->size() != previous.size())) {
+      throw std::invalid_argument("estimateRelativeGain: a saturation mask must be 8-bit of the images' size");
+    }
   }
   if (points.size() != guesses.size()) {
     throw std::invalid_argument("estimateRelativeGain: one guess per point expected");
@@ -52,7 +59,10 @@ RelativeGain estimateRelativeGain(const cv::Mat& previous, const cv::Mat& next,
   log_ratios.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     double a = 0.0, b = 0.0;
-    if (!boxMean(previous, points[i], half_box_px, a) || !boxMean(next, guesses[i], half_box_px, b)) continue;
+    if (!boxMean(previous, previous_saturated, points[i], half_box_px, a) ||
+        !boxMean(next, next_saturated, guesses[i], half_box_px, b)) {
+      continue;
+    }
     if (a < min_mean_dn || b < min_mean_dn) continue;
     log_ratios.push_back(std::log(b / a));
   }
@@ -78,7 +88,6 @@ cv::Mat compensateGain(const cv::Mat& linear, double ratio) {
   }
   cv::Mat out;
   linear.convertTo(out, CV_8U, 1.0 / ratio);  // rounds and saturates
-  out.setTo(kSaturatedDn, linear >= kSaturatedDn);
   return out;
 }
 

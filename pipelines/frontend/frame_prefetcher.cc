@@ -51,7 +51,8 @@ void FramePrefetcher::run() {
       frame.decode_ms = msSince(start);
       if (frame.error.empty()) {
         const auto start_pre = std::chrono::steady_clock::now();
-        frame.gray = preprocessor_.process(bgr, &frame.quality, keep_linear_ ? &frame.linear : nullptr);
+        frame.gray = preprocessor_.process(bgr, &frame.quality, keep_linear_ ? &frame.linear : nullptr,
+                                          keep_linear_ ? &frame.saturated : nullptr);
         frame.preprocess_ms = msSince(start_pre);
       }
       std::unique_lock<std::mutex> lock(mutex_);

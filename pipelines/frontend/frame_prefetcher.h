@@ -32,6 +32,7 @@ struct PrefetchedFrame {
   double t = 0.0;
   cv::Mat gray;          // pre-processed (ImagePreprocessor); empty when undecodable
   cv::Mat linear;        // before CLAHE (ImagePreprocessor::process), with compensate_gain only
+  cv::Mat saturated;     // its pixels saturated in the camera, with compensate_gain only
   ImageQuality quality;
   std::string error;     // the decoder's message (file named) when undecodable
   double decode_ms = 0.0;

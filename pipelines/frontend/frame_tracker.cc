@@ -175,7 +175,8 @@ ImagePyramid FrameTracker::pyramidToTrackInto(const PrefetchedFrame& frame, cons
   }
   // Boxes a KLT window wide either side of the point: much larger than the
   // guesses' error, small enough to stay on the seabed the track sees.
-  const RelativeGain gain = estimateRelativeGain(last_linear_, frame.linear, points, guesses, klt_.windowPx());
+  const RelativeGain gain = estimateRelativeGain(last_linear_, frame.linear, last_saturated_, frame.saturated,
+                                                 points, guesses, klt_.windowPx());
   const double step_db = std::abs(gain.db());
   if (gain.samples == 0 || step_db < options_.gain_compensation_min_db || step_db < 3.0 * gain.sigma_db) {
     return own;
@@ -216,6 +217,7 @@ void FrameTracker::startReference(const PrefetchedFrame& frame, FrameRecord& rec
   }
   last_pyramid_ = pyramid;
   last_linear_ = frame.linear;
+  last_saturated_ = frame.saturated;
   record.status = FrameStatus::initialising;
   record.tracked = int(tracks_.size());
 }
@@ -246,6 +248,7 @@ void FrameTracker::processInitialising(const PrefetchedFrame& frame, FrameRecord
   tracks_ = std::move(survivors);
   last_pyramid_ = pyramid;
   last_linear_ = frame.linear;
+  last_saturated_ = frame.saturated;
   record.tracked = int(tracks_.size());
   record.status = FrameStatus::initialising;
   stepMs(record, FrontendStep::track) += watch.lapMs();
@@ -531,6 +534,7 @@ void FrameTracker::processTracking(const PrefetchedFrame& frame, FrameRecord& re
   }
   last_pyramid_ = pyramid;
   last_linear_ = frame.linear;
+  last_saturated_ = frame.saturated;
   failed_frames_ = 0;
   record.posed = true;
   record.T_F_C = estimate.T_F_C;

@@ -162,6 +162,7 @@ class FrameTracker {
   int next_track_id_ = 0;
   ImagePyramid last_pyramid_;   // of the last frame tracked into (posed, or the init reference chain)
   cv::Mat last_linear_;         // its image before CLAHE (compensate_gain only)
+  cv::Mat last_saturated_;      // and its saturated pixels
   ImagePreprocessor equaliser_; // CLAHE of a gain-compensated frame
   int gain_compensated_frames_ = 0;
   double largest_gain_step_db_ = 0.0;

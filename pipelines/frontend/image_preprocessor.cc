@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "pipelines/frontend/exposure_compensation.h"
 #include "pipelines/frontend/lamp_light_field.h"
 
 namespace hsmap {
@@ -32,14 +31,13 @@ cv::Mat ImagePreprocessor::grey(const cv::Mat& bgr) {
   return gray;
 }
 
-cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear) const {
+cv::Mat ImagePreprocessor::process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear,
+                                   cv::Mat* saturated) const {
   const cv::Mat raw = grey(bgr);
   if (quality != nullptr) *quality = measure(raw);
   cv::Mat gray = lamp_light_field_.empty() ? raw : removeLampLight(raw, lamp_light_field_);
-  if (linear != nullptr) {
-    *linear = gray.clone();
-    linear->setTo(kSaturatedDn, raw >= 250);  // the same level as ImageQuality's
-  }
+  if (linear != nullptr) *linear = gray;  // equalise() writes a new image
+  if (saturated != nullptr) *saturated = raw >= 250;
   return equalise(gray);
 }
 

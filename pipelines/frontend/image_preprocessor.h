@@ -39,9 +39,11 @@ class ImagePreprocessor {
   // Grey image to track on (CLAHE applied when enabled); `quality`, when not
   // null, receives the measures of the raw grey image; `linear`, when not
   // null, the grey image before CLAHE (lamp light removed), in which a gain
-  // step is a pure factor, with every pixel saturated in the camera (>= 250
-  // DN) set to kSaturatedDn (exposure_compensation.h).
-  cv::Mat process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear = nullptr) const;
+  // step is a pure factor (exposure_compensation.h); `saturated`, when not
+  // null, the mask (255) of its pixels saturated in the camera (>= 250 DN,
+  // as ImageQuality counts them).
+  cv::Mat process(const cv::Mat& bgr, ImageQuality* quality, cv::Mat* linear = nullptr,
+                  cv::Mat* saturated = nullptr) const;
 
   // CLAHE of a `linear` image when enabled, else the image itself: the last
   // step of process().

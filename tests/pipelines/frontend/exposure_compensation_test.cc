@@ -61,14 +61,14 @@ TEST(EstimateRelativeGain, RecoversATwelveDecibelStepFromGuessesAFewPixelsOff) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> off(-2.0f, 2.0f);
   for (const auto& p : points) guesses.push_back(p + kShift + cv::Point2f(off(rng), off(rng)));
-  const RelativeGain gain = estimateRelativeGain(previous, next, points, guesses, 9);
+  const RelativeGain gain = estimateRelativeGain(previous, next, {}, {}, points, guesses, 9);
   std::cout << "12 dB step measured as " << gain.db() << " dB +- " << gain.sigma_db << " from "
             << gain.samples << " boxes\n";
   EXPECT_GE(gain.samples, int(points.size()) * 9 / 10);
   EXPECT_NEAR(gain.db(), 12.0, 0.1);
   EXPECT_LT(gain.sigma_db, 0.1);
   // No step: within its own noise of 0 dB.
-  const RelativeGain none = estimateRelativeGain(previous, view(tex, kShift, 1.0), points, guesses, 9);
+  const RelativeGain none = estimateRelativeGain(previous, view(tex, kShift, 1.0), {}, {}, points, guesses, 9);
   EXPECT_LE(std::abs(none.db()), std::max(0.05, 3.0 * none.sigma_db));
 }
 
@@ -84,10 +84,13 @@ TEST(EstimateRelativeGain, IgnoresSnowBlobsAndSaturatedPixels) {
   for (std::size_t i = 0; i < points.size(); i += 8) {
     cv::circle(next, cv::Point(points[i] + kShift), 4, cv::Scalar(240), cv::FILLED, cv::LINE_AA);
   }
-  next(cv::Rect(100, 60, 80, 50)).setTo(kSaturatedDn);
+  const cv::Rect hot_spot(100, 60, 80, 50);
+  next(hot_spot).setTo(250);
+  cv::Mat next_saturated = cv::Mat::zeros(next.size(), CV_8U);
+  next_saturated(hot_spot).setTo(255);
   std::vector<cv::Point2f> guesses;
   for (const auto& p : points) guesses.push_back(p + kShift);
-  const RelativeGain gain = estimateRelativeGain(previous, next, points, guesses, 9);
+  const RelativeGain gain = estimateRelativeGain(previous, next, {}, next_saturated, points, guesses, 9);
   std::cout << "with snow and a saturated patch: " << gain.db() << " dB from " << gain.samples << " boxes\n";
   EXPECT_NEAR(gain.db(), 12.0, 0.3);
   EXPECT_LT(gain.samples, int(points.size()));  // the saturated boxes were left out
@@ -96,21 +99,24 @@ TEST(EstimateRelativeGain, IgnoresSnowBlobsAndSaturatedPixels) {
 TEST(EstimateRelativeGain, TooFewBoxesGiveNoStep) {
   const cv::Mat a = view(texture(3), {0, 0}, 1.0);
   const std::vector<cv::Point2f> points{{1.0f, 1.0f}, {50.0f, 50.0f}};  // one off the border
-  const RelativeGain gain = estimateRelativeGain(a, a, points, points, 9);
+  const RelativeGain gain = estimateRelativeGain(a, a, {}, {}, points, points, 9);
   EXPECT_EQ(gain.samples, 1);
   EXPECT_EQ(gain.ratio, 1.0);
-  EXPECT_THROW(estimateRelativeGain(a, cv::Mat(10, 10, CV_8U), points, points, 9), std::invalid_argument);
+  EXPECT_THROW(estimateRelativeGain(a, cv::Mat(10, 10, CV_8U), {}, {}, points, points, 9), std::invalid_argument);
+  EXPECT_THROW(estimateRelativeGain(a, a, cv::Mat(10, 10, CV_8U), {}, points, points, 9), std::invalid_argument);
 }
 
-TEST(CompensateGain, DividesAndKeepsSaturatedPixelsSaturated) {
+TEST(CompensateGain, DividesRoundsAndClips) {
   cv::Mat linear(1, 3, CV_8U);
-  linear.at<unsigned char>(0) = 200;
+  linear.at<unsigned char>(0) = 201;
   linear.at<unsigned char>(1) = 100;
-  linear.at<unsigned char>(2) = kSaturatedDn;
-  const cv::Mat out = compensateGain(linear, 2.0);
-  EXPECT_EQ(out.at<unsigned char>(0), 100);
-  EXPECT_EQ(out.at<unsigned char>(1), 50);
-  EXPECT_EQ(out.at<unsigned char>(2), kSaturatedDn);
+  linear.at<unsigned char>(2) = 255;
+  const cv::Mat down = compensateGain(linear, 2.0), up = compensateGain(linear, 0.5);
+  EXPECT_EQ(down.at<unsigned char>(0), 100);  // 100.5 rounds to even
+  EXPECT_EQ(down.at<unsigned char>(1), 50);
+  EXPECT_EQ(down.at<unsigned char>(2), 128);
+  EXPECT_EQ(up.at<unsigned char>(1), 200);
+  EXPECT_EQ(up.at<unsigned char>(2), 255);
   EXPECT_THROW(compensateGain(linear, 0.0), std::invalid_argument);
 }
 
@@ -146,7 +152,7 @@ TEST(GainCompensation, KltThroughClaheKeepsItsTracksAcrossATwelveDecibelStep) {
   const int uncompensated = accurateTracks(klt, previous, preprocessor.equalise(next_linear), points);
   std::vector<cv::Point2f> guesses;
   for (const auto& p : points) guesses.push_back(p + kShift);
-  const RelativeGain gain = estimateRelativeGain(previous_linear, next_linear, points, guesses, klt.windowPx());
+  const RelativeGain gain = estimateRelativeGain(previous_linear, next_linear, {}, {}, points, guesses, klt.windowPx());
   const int compensated =
       accurateTracks(klt, previous, preprocessor.equalise(compensateGain(next_linear, gain.ratio)), points);
   std::cout << points.size() << " tracks within 0.1 px: " << same_exposure << " at the same exposure, "
