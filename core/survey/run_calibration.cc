@@ -26,7 +26,7 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
   }
   const StrictYamlMap root(file, document, "", 1,
                            {"format", "variant", "T_C_U", "time_offset_s", "time_offset_sigma_s",
-                            "uhi_camera", "rgb_camera", "warnings"});
+                            "uhi_camera", "rgb_camera", "water", "warnings"});
   const std::string format = root.text("format");
   if (format != RunCalibration::kFormat) {
     root.fail("format", "unsupported format " + quoteForMessage(format) + "; expected '" +
@@ -68,6 +68,7 @@ RunCalibration parseDocument(const std::filesystem::path& file, const YAML::Node
     estimate.sigma = readPinholeRadtanSigma(camera, "sigma");
     calibration.rgb_camera = estimate;
   }
+  if (root.has("water")) calibration.water = readWaterBlock(file, document["water"], "water");
   calibration.warnings = readTextList(root, document["warnings"], "warnings");
   return calibration;
 }
@@ -132,6 +133,10 @@ std::string emitDocument(const RunCalibration& calibration) {
     out << YAML::Key << "sigma" << YAML::Value;
     emitPinholeRadtanSigma(out, camera.sigma);
     out << YAML::EndMap;
+  }
+  if (calibration.water) {
+    out << YAML::Key << "water" << YAML::Value;
+    emitWaterBlock(out, *calibration.water);
   }
   out << YAML::Key << "warnings" << YAML::Value;
   if (calibration.warnings.empty()) {

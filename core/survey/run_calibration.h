@@ -19,9 +19,11 @@
 //                sigma: {fx: ..., fy: ..., cx: ..., cy: ..., distortion: [5 sigmas]}}
 //                                        optional: present when the run estimated the RGB
 //                                        camera's intrinsics (georef's keyframe adjustment)
+//   water: {...}                         optional: present when the radiometry stage estimated
+//                                        the water and the lamps (water_estimate.h)
 //   warnings: []                         texts, e.g. a component the survey cannot determine
 //
-// A sigma that was not estimated is `null`; every key but uhi_camera and rgb_camera is required (a sigma
+// A sigma that was not estimated is `null`; every key but uhi_camera, rgb_camera and water is required (a sigma
 // may be null, not absent), so a truncated file is never read as "not
 // estimated". Sigmas are finite and >= 0. Rotations follow survey_config.h
 // (norm within 1e-3 of 1, normalised; one unit to double precision is kept
@@ -43,6 +45,7 @@
 
 #include "core/survey/camera_sigma.h"
 #include "core/survey/survey_config.h"
+#include "core/survey/water_estimate.h"
 
 namespace hsmap {
 
@@ -82,6 +85,7 @@ struct RunCalibration {
   std::optional<double> time_offset_sigma_s;
   std::optional<UhiCameraEstimate> uhi_camera;  // nullopt: survey.yaml's uhi.camera was used
   std::optional<RgbCameraEstimate> rgb_camera;  // nullopt: survey.yaml's rgb.camera was used
+  std::optional<WaterEstimate> water;           // nullopt: no radiometry (its warnings are in `warnings`)
   std::vector<std::string> warnings;
 };
 

@@ -270,7 +270,6 @@ WaterEstimationReport estimateWater(const RadiometricObservations& observations,
   solver.linear_solver = SolverOptions::LinearSolver::sparse_normal_cholesky;
   solver.max_iterations = options.max_iterations;
   solver.num_threads = options.num_threads;
-  solver.function_tolerance = 1e-8;
 
   report.backscatter_estimated = options.estimate_backscatter;
   std::optional<Eigen::MatrixXd> covariance;

@@ -83,7 +83,7 @@ struct WaterEstimationOptions {
   double max_attenuation_sigma_per_m = 0.02;
   double max_beam_sigma = 0.5;
   double max_backscatter_sigma_dn = 5.0;  // above, in any band: backscatter held at zero
-  int max_iterations = 100;
+  int max_iterations = 50;
   int num_threads = 0;  // 0: every core
 
   // std::invalid_argument naming the field.

@@ -1,5 +1,6 @@
 #include "pipelines/run/radiometry_stage.h"
 
+#include <algorithm>
 #include <chrono>
 #include <ostream>
 #include <sstream>
@@ -52,6 +53,11 @@ void runRadiometryStage(const StageContext& context) {
 
   const auto start = std::chrono::steady_clock::now();
   ObservationOptions observation_options;
+  // The solve's size is observations x bands residuals: at most ~600 000
+  // (a 211-band cube: 177 points; 24 bands: the default 400).
+  observation_options.max_points = std::clamp(
+      int(600000 / (std::max(1, survey.cube->bands()) * observation_options.max_per_cell)), 50,
+      observation_options.max_points);
   const RadiometricObservations observations = gatherObservations(
       *survey.cube, PushbroomCamera(uhi_camera), line_poses, mesh, *survey.config.lights, T_C_U, observation_options);
   const double gather_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -67,6 +73,20 @@ void runRadiometryStage(const StageContext& context) {
   summary << report.summary(survey.wavelengths_nm);
   out << summary.str();
   writeWaterEstimate(folder / radiometry_files::water, report.water);
+  if (fs::exists(calibration_yaml)) {
+    // The run's calibration with the contract's `water:` block and the
+    // stage's warnings, published as RUN/calibration.yaml.
+    RunCalibration calibration = readRunCalibration(calibration_yaml);
+    WaterEstimate water = report.water;
+    for (const std::string& warning : water.warnings) {
+      if (std::find(calibration.warnings.begin(), calibration.warnings.end(), warning) == calibration.warnings.end()) {
+        calibration.warnings.push_back(warning);
+      }
+    }
+    water.warnings.clear();
+    calibration.water = water;
+    writeRunCalibration(folder / radiometry_files::calibration, calibration);
+  }
   writeTextAtomically(folder / radiometry_files::summary, summary.str());
   out << "wrote " << (folder / radiometry_files::water).string() << "\n";
 }

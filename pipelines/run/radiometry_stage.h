@@ -5,7 +5,10 @@
 //   reads   RUN/trajectory/uhi_lines.csv, RUN/map/mesh.ply, RUN/calibration.yaml
 //           (T_C_U, the UHI camera) as published by the stages before it; the
 //           survey's cube and `lights` (lamps and K(λ))
-//   writes  RUN/radiometry/water.yaml (core/survey/water_estimate.h) and
+//   writes  RUN/radiometry/water.yaml (core/survey/water_estimate.h),
+//           RUN/radiometry/calibration.yaml (the run's calibration.yaml with
+//           the contract's `water:` block and the stage's warnings, published
+//           as RUN/calibration.yaml) and
 //           RUN/radiometry/summary.txt; the products stage turns the
 //           radiance ortho into reflectance with it
 // A survey without `lights` gets no estimate (and so radiance products only),
@@ -19,6 +22,7 @@ namespace radiometry_files {
 inline constexpr const char* folder = "radiometry";
 inline constexpr const char* water = "water.yaml";
 inline constexpr const char* summary = "summary.txt";
+inline constexpr const char* calibration = "calibration.yaml";
 }  // namespace radiometry_files
 
 void runRadiometryStage(const StageContext& context);

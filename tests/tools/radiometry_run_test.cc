@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/io/envi_reader.h"
+#include "core/survey/run_calibration.h"
 #include "core/survey/water_estimate.h"
 #include "tests/support/run_hsmap.h"
 #include "tests/support/temp_folder.h"
@@ -51,6 +52,10 @@ TEST(RadiometryRun, WritesReflectanceThatEvaluateScoresBetterThanRadiance) {
     EXPECT_GE(water.attenuation_per_m[b], 0.0) << b;
     EXPECT_TRUE(water.attenuation_sigma_per_m[b].has_value()) << b;
   }
+  // calibration.yaml carries the contract's water block.
+  const RunCalibration calibration = readRunCalibration(out / "calibration.yaml");
+  ASSERT_TRUE(calibration.water.has_value());
+  EXPECT_EQ(calibration.water->attenuation_per_m, water.attenuation_per_m);
   // The same grid, map info and bands as the radiance ortho.
   EXPECT_EQ(reflectance.samples(), ortho.samples());
   EXPECT_EQ(reflectance.lines(), ortho.lines());
