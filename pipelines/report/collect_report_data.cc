@@ -28,6 +28,8 @@ ReportData collectReportData(const fs::path& run) {
   std::unique_ptr<Survey> survey;
   try {
     survey = std::make_unique<Survey>(loadSurvey(data.survey_folder));
+    data.survey_uhi_camera = survey->config.uhi.camera;
+    data.survey_rgb_camera = survey->config.rgb.camera;
     // The residuals through the RGB camera the run used: georef's estimate
     // when survey.yaml gives rgb.camera_sigma (docs/GEOREF.md).
     if (data.calibration && data.calibration->rgb_camera) {

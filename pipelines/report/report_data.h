@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/geometry/camera_parameters.h"
 #include "core/survey/run_calibration.h"
 
 namespace hsmap {
@@ -122,6 +123,10 @@ struct ReportData {
   // The calibration.
   std::optional<RunCalibration> calibration;
   std::string calibration_source;
+  // survey.yaml's cameras, to show how far an estimated camera moved from
+  // them (nullopt: the survey could not be read).
+  std::optional<PushbroomParameters> survey_uhi_camera;
+  std::optional<PinholeRadtanParameters> survey_rgb_camera;
 
   // Images and spectra.
   std::optional<ReportImage> hyperspectral_ortho;  // the quick-look

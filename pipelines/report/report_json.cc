@@ -1,6 +1,8 @@
 #include "pipelines/report/report_json.h"
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "pipelines/report/base64_text.h"
 #include "pipelines/report/json_text.h"
@@ -39,7 +41,70 @@ void writeOptionalVector(JsonText& json, const std::optional<Eigen::Vector3d>& v
   json.beginArray().value(vector->x()).value(vector->y()).value(vector->z()).endArray();
 }
 
-void writeCalibration(JsonText& json, const RunCalibration& calibration, const std::string& source) {
+// One estimated intrinsic: its value, 1-sigma (0: held at survey.yaml's),
+// survey.yaml's value (null: the survey was not read) and the change from it
+// (null: none, or the survey was not read).
+struct CameraParameter {
+  const char* name;
+  const char* unit;
+  double estimate, sigma;
+  std::optional<double> survey;
+};
+
+void writeCamera(JsonText& json, const char* key, const char* name, const std::vector<CameraParameter>& parameters) {
+  json.beginObject().key("key").value(key).key("name").value(name).key("parameters").beginArray();
+  for (const CameraParameter& p : parameters) {
+    json.beginObject().key("name").value(p.name).key("unit").value(p.unit)
+        .key("estimate").value(p.estimate).key("sigma").value(p.sigma).key("survey");
+    if (p.survey) json.value(*p.survey); else json.null();
+    json.key("change");
+    if (p.survey && *p.survey != p.estimate) json.value(p.estimate - *p.survey); else json.null();
+    json.endObject();
+  }
+  json.endArray().endObject();
+}
+
+// The cameras whose intrinsics the run estimated (none: an empty list).
+void writeEstimatedCameras(JsonText& json, const ReportData& data) {
+  const RunCalibration& calibration = *data.calibration;
+  json.beginArray();
+  if (calibration.uhi_camera) {
+    const UhiCameraEstimate& e = *calibration.uhi_camera;
+    const std::optional<PushbroomParameters>& s = data.survey_uhi_camera;
+    const auto survey = [&](double PushbroomParameters::*member) {
+      return s ? std::optional<double>((*s).*member) : std::nullopt;
+    };
+    const auto survey_k = [&](int i) { return s ? std::optional<double>(s->distortion[i]) : std::nullopt; };
+    writeCamera(json, "uhi_camera", "UHI push-broom camera (joint's self-calibration)",
+                {{"f", "px", e.f, e.sigma.f, survey(&PushbroomParameters::f)},
+                 {"cx", "px", e.cx, e.sigma.cx, survey(&PushbroomParameters::cx)},
+                 {"k1", "", e.distortion[0], e.sigma.distortion[0], survey_k(0)},
+                 {"k2", "", e.distortion[1], e.sigma.distortion[1], survey_k(1)}});
+  }
+  if (calibration.rgb_camera) {
+    const RgbCameraEstimate& e = *calibration.rgb_camera;
+    const std::optional<PinholeRadtanParameters>& s = data.survey_rgb_camera;
+    const auto survey = [&](double PinholeRadtanParameters::*member) {
+      return s ? std::optional<double>((*s).*member) : std::nullopt;
+    };
+    const auto survey_k = [&](int i) { return s ? std::optional<double>(s->distortion[i]) : std::nullopt; };
+    std::vector<CameraParameter> parameters = {
+        {"fx", "px", e.fx, e.sigma.fx, survey(&PinholeRadtanParameters::fx)},
+        {"fy", "px", e.fy, e.sigma.fy, survey(&PinholeRadtanParameters::fy)},
+        {"cx", "px", e.cx, e.sigma.cx, survey(&PinholeRadtanParameters::cx)},
+        {"cy", "px", e.cy, e.sigma.cy, survey(&PinholeRadtanParameters::cy)}};
+    constexpr const char* kDistortion[] = {"k1", "k2", "p1", "p2", "k3"};
+    for (int i = 0; i < 5; ++i) {
+      parameters.push_back({kDistortion[i], "", e.distortion[i], e.sigma.distortion[i], survey_k(i)});
+    }
+    writeCamera(json, "rgb_camera", "RGB camera (geo-referencing's keyframe adjustment)", parameters);
+  }
+  json.endArray();
+}
+
+void writeCalibration(JsonText& json, const ReportData& data) {
+  const RunCalibration& calibration = *data.calibration;
+  const std::string& source = data.calibration_source;
   const Eigen::Quaterniond& q = calibration.T_C_U.rotation;
   const Eigen::Vector3d& t = calibration.T_C_U.translation_m;
   json.beginObject().key("source").value(source).key("variant").value(calibration.variant);
@@ -56,6 +121,8 @@ void writeCalibration(JsonText& json, const RunCalibration& calibration, const s
   } else {
     json.null();
   }
+  json.key("cameras");
+  writeEstimatedCameras(json, data);
   json.key("warnings").beginArray();
   for (const std::string& warning : calibration.warnings) json.value(warning);
   json.endArray().endObject();
@@ -159,7 +226,7 @@ std::string reportJson(const ReportData& data) {
 
   json.key("calibration");
   if (data.calibration) {
-    writeCalibration(json, *data.calibration, data.calibration_source);
+    writeCalibration(json, data);
   } else {
     json.null();
   }

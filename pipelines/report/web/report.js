@@ -294,6 +294,24 @@
     s.append(table(['T_C_U and d (' + c.variant + ')', 'estimate', '1-sigma'], rows, [false, true, true]));
     s.append(caption('T_C_U places the UHI frame U in the RGB camera frame C; the quaternion (w, x, y, z) is [' +
                      q.map((v) => fixed(v, 6)).join(', ') + ']. From ' + c.source + '.'));
+    // The cameras whose intrinsics the run estimated (none listed: survey.yaml's were used as they are).
+    for (const camera of c.cameras || []) {
+      const cameraRows = camera.parameters.map((p) => {
+        const unit = p.unit ? ' (' + p.unit + ')' : '';
+        const digits = p.unit ? 6 : 4;
+        let change;
+        if (p.survey === null) change = 'survey.yaml not read';
+        else if (p.change === null) change = 'as survey.yaml';
+        else change = (p.change > 0 ? '+' : '') + significant(p.change, 3) + ' (survey.yaml: ' + significant(p.survey, digits) + ')';
+        return [p.name + unit, significant(p.estimate, digits),
+                p.sigma > 0 ? '± ' + significant(p.sigma, 3) : 'held at survey.yaml\'s', change];
+      });
+      s.append(el('h3', {}, camera.name));
+      const cameraTable = table(['intrinsic', 'estimate', '1-sigma', 'change from survey.yaml'], cameraRows,
+                                [false, true, true, true]);
+      cameraTable.dataset.camera = camera.key;
+      s.append(cameraTable);
+    }
     s.append(el('h3', {}, 'Observability and other warnings (' + c.warnings.length + ')'));
     s.append(c.warnings.length ? el('ul', {class: 'warnings'}, ...c.warnings.map((w) => el('li', {}, w)))
                                : missing('None: every component was determined.'));
