@@ -22,7 +22,7 @@ std::string ReflectanceReport::summary() const {
   std::ostringstream text;
   text << "reflectance: " << valid << " of " << pixels << " pixels (" << empty << " empty in the radiance ortho, "
        << shadowed << " NaN in a lamp's shadow, " << undetermined
-       << " NaN undetermined: no hit or no lamp facing it) in " << seconds << " s\n";
+       << " NaN undetermined: no hit, no lamp facing it or a depth edge) in " << seconds << " s\n";
   return text.str();
 }
 
@@ -89,6 +89,14 @@ ReflectanceReport writeReflectanceOrtho(const fs::path& folder, const PushbroomC
         ray.t_far = options.cast.max_range_m;
         const RayHit hit = mesh.intersect(ray);
         if (!hit.hit()) return fail(PixelFate::undetermined);
+        // A gap-filled pixel at a depth edge blends hits of two surfaces: its
+        // interpolated range then differs from the recast one, and neither
+        // surface's geometry is the pixel's.
+        const float range_f = anc[2 * std::size_t(cols) + std::size_t(col)];
+        if (std::isfinite(range_f) &&
+            std::abs(hit.distance - double(range_f)) > options.max_range_mismatch * hit.distance) {
+          return fail(PixelFate::undetermined);
+        }
         const Eigen::Vector3d p_W = ray.origin + hit.distance * ray.direction;
         const LampPathsAtPoint paths =
             lampPathsAt(lampsInWorld(lights, T_W_U, T_C_U), p_W, hit.normal, T_W_U.t, &mesh);

@@ -22,7 +22,10 @@
 // a pixel in a lamp's shadow (any lamp that faces the hit is hidden from it:
 // the model's sum would miss that lamp's share only where the shadow is
 // sharp, and its edges are not); a pixel whose correction is undetermined
-// (no ancillary entry, no ray, the ray misses the mesh, no lamp faces it).
+// (no ancillary entry, no ray, the ray misses the mesh, no lamp faces it, or
+// the ancillary range differs from the recast hit's by more than
+// max_range_mismatch: a gap-filled pixel at a depth edge, where a hit of the
+// near surface and one of the far surface were blended).
 // Rows are read, corrected and written one at a time (two rows of the
 // radiance ortho in memory), so memory does not grow with the survey.
 
@@ -47,6 +50,10 @@ struct ReflectanceOptions {
   bool write_geotiff = true;
   GeoTiffExportOptions geotiff;
   ScanLineCastOptions cast;
+  // A pixel whose ancillary range (interpolated in a gap-filled pixel)
+  // differs from the recast hit's by more than this fraction of it sits on a
+  // depth edge: undetermined.
+  double max_range_mismatch = 0.05;
 };
 
 struct ReflectanceReport {
