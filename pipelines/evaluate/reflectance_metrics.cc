@@ -29,7 +29,8 @@ std::string ReflectanceMetrics::summary() const {
     return text.str();
   };
   out << "  reflectance_sam_deg            " << figure(reflectance_sam_deg) << "  (" << blocks << " blocks of "
-      << block_pixels << " truth pixels, " << (registered ? "registered" : "as placed") << ")\n";
+      << block_pixels << " truth pixels, " << (registered ? "registered" : "as placed") << "; "
+      << band_values_left_out << " block-band values left out: NaN in the product, too dark)\n";
   out << "  reflectance_rmse               " << figure(reflectance_rmse) << "\n";
   out << "  reflectance_gain_free_rmse     " << figure(reflectance_gain_free_rmse) << "\n";
   out << "  water_attenuation_rmse_per_m   " << figure(water_attenuation_rmse_per_m) << "\n";
@@ -110,12 +111,16 @@ ReflectanceMetrics measureRunReflectance(const fs::path& run_folder, const fs::p
 
   std::map<int, Eigen::MatrixXf> cache;  // produced rows (bands x cols)
   Eigen::MatrixXf truth_line;
+  // Per valid block: the mean spectra over its pairs, band by band, and which
+  // bands the product determined there (a band NaN in every pair is left out).
   std::vector<Eigen::VectorXd> produced_means, truth_means;
+  std::vector<Eigen::Array<bool, Eigen::Dynamic, 1>> determined;
   for (int r0 = 0; r0 < truth.lines(); r0 += block) {
     const int rows = std::min(block, truth.lines() - r0);
     const int block_cols = (truth.samples() + block - 1) / block;
     std::vector<Eigen::VectorXd> p_sum(std::size_t(block_cols), Eigen::VectorXd::Zero(bands));
     std::vector<Eigen::VectorXd> t_sum(std::size_t(block_cols), Eigen::VectorXd::Zero(bands));
+    std::vector<Eigen::VectorXi> band_pairs(std::size_t(block_cols), Eigen::VectorXi::Zero(bands));
     std::vector<int> pairs(std::size_t(block_cols), 0), truth_valid(std::size_t(block_cols), 0);
     for (int r = r0; r < r0 + rows; ++r) {
       truth.readLine(r, truth_line);
@@ -136,21 +141,29 @@ ReflectanceMetrics measureRunReflectance(const fs::path& run_folder, const fs::p
           produced.readLine(pr, line);
           row = cache.emplace(pr, std::move(line)).first;
         }
-        bool produced_valid = true;
-        for (int b = 0; b < bands && produced_valid; ++b) produced_valid = std::isfinite(row->second(b, pc));
-        if (!produced_valid) continue;
+        // A produced pixel counts when any band is a number (as the ortho
+        // metrics' validity); a band NaN there (too dark to measure) is left
+        // out of that band's mean.
+        bool any = false;
         for (int b = 0; b < bands; ++b) {
-          p_sum[k][b] += row->second(b, pc);
+          const float v = row->second(b, pc);
+          if (!std::isfinite(v)) continue;
+          any = true;
+          p_sum[k][b] += v;
           t_sum[k][b] += truth_line(b, c);
+          ++band_pairs[k][b];
         }
-        ++pairs[k];
+        if (any) ++pairs[k];
       }
     }
     for (int k = 0; k < block_cols; ++k) {
       if (truth_valid[std::size_t(k)] == 0) continue;
       if (double(pairs[std::size_t(k)]) < options.min_valid_fraction * double(block * block)) continue;
-      produced_means.push_back(p_sum[std::size_t(k)] / pairs[std::size_t(k)]);
-      truth_means.push_back(t_sum[std::size_t(k)] / pairs[std::size_t(k)]);
+      const Eigen::VectorXi& n = band_pairs[std::size_t(k)];
+      const Eigen::VectorXd count = n.cast<double>().cwiseMax(1.0);
+      produced_means.push_back(p_sum[std::size_t(k)].cwiseQuotient(count));
+      truth_means.push_back(t_sum[std::size_t(k)].cwiseQuotient(count));
+      determined.push_back((n.array() > 0));
     }
     // Rows above the next block row's reach are no longer needed.
     if (!cache.empty() && cache.size() > 64) cache.erase(cache.begin(), std::next(cache.begin(), std::ptrdiff_t(cache.size() - 32)));
@@ -162,30 +175,34 @@ ReflectanceMetrics measureRunReflectance(const fs::path& run_folder, const fs::p
     return metrics;
   }
   double sam = 0.0, squares = 0.0, truth_squares = 0.0;
-  std::int64_t sam_blocks = 0;
+  std::int64_t sam_blocks = 0, values = 0;
   Eigen::VectorXd pt = Eigen::VectorXd::Zero(bands), pp = Eigen::VectorXd::Zero(bands);
   for (std::size_t i = 0; i < truth_means.size(); ++i) {
-    const Eigen::VectorXd& p = produced_means[i];
-    const Eigen::VectorXd& q = truth_means[i];
-    if (p.norm() > 0.0 && q.norm() > 0.0) {
+    const Eigen::VectorXd mask = determined[i].cast<double>().matrix();
+    const Eigen::VectorXd p = produced_means[i].cwiseProduct(mask);
+    const Eigen::VectorXd q = truth_means[i].cwiseProduct(mask);
+    metrics.band_values_left_out += std::int64_t(bands) - std::int64_t(determined[i].count());
+    if (determined[i].count() >= 2 && p.norm() > 0.0 && q.norm() > 0.0) {
       const double chord = (p.normalized() - q.normalized()).norm();
       sam += 2.0 * std::asin(std::min(1.0, 0.5 * chord)) * 180.0 / std::numbers::pi;
       ++sam_blocks;
     }
     squares += (p - q).squaredNorm();
     truth_squares += q.squaredNorm();
+    values += determined[i].count();
     pt += p.cwiseProduct(q);
     pp += p.cwiseProduct(p);
   }
-  const double n = double(truth_means.size()) * bands;
+  const double n = double(std::max<std::int64_t>(values, 1));
   metrics.reflectance_sam_deg = sam_blocks > 0 ? MetricValue::of(sam / double(sam_blocks))
-                                               : MetricValue::missing("every block's spectrum is zero");
+                                               : MetricValue::missing("no block has two determined bands");
   metrics.reflectance_rmse = MetricValue::of(std::sqrt(squares / n));
   Eigen::VectorXd gain(bands);
   for (int b = 0; b < bands; ++b) gain[b] = pp[b] > 0.0 ? pt[b] / pp[b] : 0.0;
   double gain_free = 0.0;
   for (std::size_t i = 0; i < truth_means.size(); ++i) {
-    gain_free += (produced_means[i].cwiseProduct(gain) - truth_means[i]).squaredNorm();
+    const Eigen::VectorXd mask = determined[i].cast<double>().matrix();
+    gain_free += (produced_means[i].cwiseProduct(gain) - truth_means[i]).cwiseProduct(mask).squaredNorm();
   }
   metrics.reflectance_gain_free_rmse =
       truth_squares > 0.0 ? MetricValue::of(std::sqrt(gain_free / n) / std::sqrt(truth_squares / n))

@@ -11,9 +11,12 @@
 // survey origin, at the registered position when the ortho metrics measured
 // a registration: the 2-D similarity fitted to their patch matches, so that
 // the spectra are judged and not the geo-referencing, as for ortho_sam_deg);
-// a pair counts when the produced pixel is valid in every band. A block is
-// valid in both when at least min_valid_fraction of its truth pixels form
-// pairs; its two spectra are the means over its pairs.
+// a pair counts when the produced pixel has any band that is a number (the
+// ortho metrics' validity). A block is valid in both when at least
+// min_valid_fraction of its truth pixels form pairs; its two spectra are the
+// means over its pairs, band by band, over the bands the product determined
+// there (a band NaN in all its pairs, too dark to measure, is left out of
+// the block's angle and of the sums, and counted).
 //
 //   reflectance_sam_deg         mean over valid blocks of the spectral angle (degrees)
 //   reflectance_rmse            RMS over blocks and bands of (produced − true)
@@ -48,6 +51,7 @@ struct ReflectanceMetrics {
   MetricValue reflectance_gain_free_rmse;
   MetricValue water_attenuation_rmse_per_m;
   std::int64_t blocks = 0;  // valid in both
+  std::int64_t band_values_left_out = 0;  // block-band values the product left NaN (too dark)
   int block_pixels = 0;     // side of a block in truth pixels
   bool registered = false;
 

@@ -22,7 +22,8 @@ std::string ReflectanceReport::summary() const {
   std::ostringstream text;
   text << "reflectance: " << valid << " of " << pixels << " pixels (" << empty << " empty in the radiance ortho, "
        << shadowed << " NaN in a lamp's shadow, " << undetermined
-       << " NaN undetermined: no hit, no lamp facing it or a depth edge) in " << seconds << " s\n";
+       << " NaN undetermined: no hit, no lamp facing it, a depth edge or every band too dark); " << dark_band_values
+       << " band values NaN in valid pixels (the lamps' signal below the sensor's noise) in " << seconds << " s\n";
   return text.str();
 }
 
@@ -65,6 +66,7 @@ ReflectanceReport writeReflectanceOrtho(const fs::path& folder, const PushbroomC
     std::vector<float> dn(std::size_t(bands) * std::size_t(cols)), anc(std::size_t(4) * std::size_t(cols));
     std::vector<float> out(dn.size());
     std::vector<PixelFate> fate(static_cast<std::size_t>(cols), PixelFate::empty);
+    std::vector<int> dark_values(static_cast<std::size_t>(cols), 0);
     constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
     for (int row = 0; row < rows; ++row) {
       ortho.readLine(row, dn.data());
@@ -102,15 +104,26 @@ ReflectanceReport writeReflectanceOrtho(const fs::path& folder, const PushbroomC
             lampPathsAt(lampsInWorld(lights, T_W_U, T_C_U), p_W, hit.normal, T_W_U.t, &mesh);
         if (paths.shadowed > 0) return fail(PixelFate::shadowed);
         if (paths.lit.empty()) return fail(PixelFate::undetermined);
+        int dark = 0;
         for (int b = 0; b < bands; ++b) {
           const double illumination =
               lampIllumination(paths.lit, hit.distance, water.attenuation_per_m[std::size_t(b)], water.beam.data());
+          const double signal = response_dn[std::size_t(b)] * illumination;
           const std::size_t i = std::size_t(b) * std::size_t(cols) + std::size_t(col);
-          out[i] = float((double(dn[i]) - water.backscatter_dn[std::size_t(b)]) /
-                         (response_dn[std::size_t(b)] * illumination));
+          if (!(signal >= options.min_signal_dn)) {
+            out[i] = kNaN;
+            ++dark;
+            continue;
+          }
+          out[i] = float((double(dn[i]) - water.backscatter_dn[std::size_t(b)]) / signal);
         }
-        fate[std::size_t(col)] = PixelFate::valid;
+        dark_values[std::size_t(col)] = dark;
+        fate[std::size_t(col)] = dark == bands ? PixelFate::undetermined : PixelFate::valid;
       });
+      for (std::size_t c = 0; c < fate.size(); ++c) {
+        if (fate[c] == PixelFate::valid) report.dark_band_values += dark_values[c];
+        dark_values[c] = 0;
+      }
       for (PixelFate f : fate) {
         switch (f) {
           case PixelFate::valid: ++report.valid; break;

@@ -54,6 +54,11 @@ struct ReflectanceOptions {
   // differs from the recast hit's by more than this fraction of it sits on a
   // depth edge: undetermined.
   double max_range_mismatch = 0.05;
+  // A band whose lamp signal for a white seabed, K(λ) · Σ_l ..., is below
+  // this many DN is NaN in that pixel: the water leaves less light than the
+  // sensor's noise (the near infrared over metres of water), and dividing
+  // the noise by it would give any reflectance.
+  double min_signal_dn = 2.0;
 };
 
 struct ReflectanceReport {
@@ -61,7 +66,8 @@ struct ReflectanceReport {
   std::int64_t empty = 0;         // empty in the radiance ortho
   std::int64_t shadowed = 0;      // in a lamp's shadow
   std::int64_t undetermined = 0;  // no geometry or no lamp facing the hit
-  std::int64_t valid = 0;
+  std::int64_t valid = 0;            // with at least one band determined
+  std::int64_t dark_band_values = 0; // band values NaN in valid pixels: signal below min_signal_dn
   double seconds = 0.0;
   std::filesystem::path hdr, tif;
 

@@ -119,6 +119,8 @@ TEST(ReflectanceOrtho, InvertsTheModelAndLeavesShadowsAndGapsNaN) {
   EXPECT_EQ(report.shadowed, expected_shaded);
   EXPECT_EQ(report.valid, samples - 3 - expected_shaded);
 
+  EXPECT_EQ(report.dark_band_values, 0);
+
   const EnviReader result(folder / "reflectance.hdr");
   std::vector<float> out(std::size_t(bands * samples));
   result.readLine(0, out.data());
@@ -133,6 +135,14 @@ TEST(ReflectanceOrtho, InvertsTheModelAndLeavesShadowsAndGapsNaN) {
       }
     }
   }
+  // Where the lamps' signal is below min_signal_dn every band is too dark
+  // to measure: nothing is inverted.
+  ReflectanceOptions dark_options = options;
+  dark_options.min_signal_dn = 1e9;
+  const ReflectanceReport dark =
+      writeReflectanceOrtho(folder.path(), camera, line_poses, mesh, lights, SE3d(), response, water, dark_options);
+  EXPECT_EQ(dark.valid, 0);
+  EXPECT_EQ(dark.undetermined, samples - 1 - expected_shaded);
 }
 
 }  // namespace
