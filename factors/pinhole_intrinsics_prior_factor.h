@@ -15,40 +15,32 @@
 // not built at all (nothing to estimate). noise() is built from the positive
 // sigmas, in parameter order.
 //
-// Jacobian: analytic, the rows of the identity of the free parameters.
+// A ParameterSubsetPriorFactor on that block (its residual, noise and
+// analytic Jacobian).
 
 #include <array>
-#include <memory>
-#include <string>
 #include <vector>
 
 #include "core/geometry/pinhole_radtan_camera.h"
 #include "core/graph/key.h"
-#include "factors/ceres_factor.h"
+#include "factors/parameter_subset_prior_factor.h"
 
 namespace hsmap {
 
-class PinholeIntrinsicsPriorFactor : public CeresFactor {
+class PinholeIntrinsicsPriorFactor : public ParameterSubsetPriorFactor {
  public:
   using Intrinsics = std::array<double, PinholeRadtanCamera::kNumIntrinsics>;
 
   // Throws std::invalid_argument for a non-finite prior, a negative or
   // non-finite sigma, or sigmas that are all 0 (nothing to estimate).
-  PinholeIntrinsicsPriorFactor(Key rgb_intrinsics, const Intrinsics& prior, const Intrinsics& sigmas);
+  PinholeIntrinsicsPriorFactor(Key rgb_intrinsics, const Intrinsics& prior, const Intrinsics& sigmas)
+      : ParameterSubsetPriorFactor("PinholeIntrinsicsPriorFactor", rgb_intrinsics, {prior.begin(), prior.end()},
+                                   {sigmas.begin(), sigmas.end()}) {}
 
-  std::string name() const override { return "PinholeIntrinsicsPriorFactor"; }
-  std::unique_ptr<ceres::CostFunction> createCostFunction() const override;
-
-  const Intrinsics& prior() const { return prior_; }
-  // Indices (into [fx fy cx cy k1 k2 p1 p2 k3]) of the parameters with a
-  // sigma > 0, the residual's order.
-  const std::vector<int>& freeParameters() const { return free_; }
   // Indices of the parameters with a sigma of 0 (to be held constant).
-  static std::vector<int> heldParameters(const Intrinsics& sigmas);
-
- private:
-  Intrinsics prior_;
-  std::vector<int> free_;
+  static std::vector<int> heldParameters(const Intrinsics& sigmas) {
+    return heldComponents({sigmas.begin(), sigmas.end()});
+  }
 };
 
 }  // namespace hsmap

@@ -13,40 +13,32 @@
 // which case this factor is not built at all). noise() is built from the
 // positive sigmas, in parameter order.
 //
-// Jacobian: analytic, the rows of the identity of the free parameters.
+// A ParameterSubsetPriorFactor on that block (its residual, noise and
+// analytic Jacobian).
 
 #include <array>
-#include <memory>
-#include <string>
 #include <vector>
 
 #include "core/geometry/pushbroom_camera.h"
 #include "core/graph/key.h"
-#include "factors/ceres_factor.h"
+#include "factors/parameter_subset_prior_factor.h"
 
 namespace hsmap {
 
-class PushbroomIntrinsicsPriorFactor : public CeresFactor {
+class PushbroomIntrinsicsPriorFactor : public ParameterSubsetPriorFactor {
  public:
   using Intrinsics = std::array<double, PushbroomCamera::kNumIntrinsics>;
 
   // Throws std::invalid_argument for a non-finite prior, a negative or
   // non-finite sigma, or sigmas that are all 0 (nothing to estimate).
-  PushbroomIntrinsicsPriorFactor(Key uhi_intrinsics, const Intrinsics& prior, const Intrinsics& sigmas);
+  PushbroomIntrinsicsPriorFactor(Key uhi_intrinsics, const Intrinsics& prior, const Intrinsics& sigmas)
+      : ParameterSubsetPriorFactor("PushbroomIntrinsicsPriorFactor", uhi_intrinsics, {prior.begin(), prior.end()},
+                                   {sigmas.begin(), sigmas.end()}) {}
 
-  std::string name() const override { return "PushbroomIntrinsicsPriorFactor"; }
-  std::unique_ptr<ceres::CostFunction> createCostFunction() const override;
-
-  const Intrinsics& prior() const { return prior_; }
-  // Indices (into [f cx k1 k2]) of the parameters with a sigma > 0, the
-  // residual's order.
-  const std::vector<int>& freeParameters() const { return free_; }
   // Indices of the parameters with a sigma of 0 (to be held constant).
-  static std::vector<int> heldParameters(const Intrinsics& sigmas);
-
- private:
-  Intrinsics prior_;
-  std::vector<int> free_;
+  static std::vector<int> heldParameters(const Intrinsics& sigmas) {
+    return heldComponents({sigmas.begin(), sigmas.end()});
+  }
 };
 
 }  // namespace hsmap
