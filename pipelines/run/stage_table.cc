@@ -87,7 +87,7 @@ const std::vector<StageDefinition>& definitions() {
        {{fs::path(radiometry_files::folder) / radiometry_files::calibration, results_paths::calibration_yaml}}, {},
        [](const RunOptions&) {
          // The stage's options are its defaults (radiometric_observations.h, water_estimation.h).
-         return std::string("radiometry: cells 0.2 m, 600 lines, at most 1200000 residuals, 50 iterations, backscatter estimated\n");
+         return std::string("radiometry: cells 0.1 m, 600 lines, at most 1200000 residuals, 50 iterations, backscatter estimated\n");
        },
        [](const StageContext& c, const RunOptions&) { runRadiometryStage(c); }},
       {StageId::products, "products", {"hyperspectral", "map/rgb_ortho.png", "map/rgb_ortho.tif"}, {},
