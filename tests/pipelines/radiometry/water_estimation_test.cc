@@ -18,6 +18,7 @@ struct Truth {
   std::vector<double> k{4000, 6000, 5000, 3000, 2000};
   std::vector<double> backscatter{8, 6, 4, 2, 1};
   double beam[2] = {-3.0, -0.5};
+  std::vector<double> wavelengths_nm{450, 500, 550, 600, 650};
 };
 
 std::vector<LampPath> pathsFor(double x, double altitude) {
@@ -69,7 +70,7 @@ TEST(WaterEstimation, RecoversAttenuationBeamAndBackscatterWithinTheirSigma) {
   WaterEstimationOptions options;
   options.relative_noise = 0.02;
   options.initial_attenuation_per_m = 0.4;  // a perturbed start: every band off by 0.3 /m or more but one
-  const WaterEstimationReport report = estimateWater(synthesize(truth, true, 7), truth.k, options);
+  const WaterEstimationReport report = estimateWater(synthesize(truth, true, 7), truth.k, truth.wavelengths_nm, options);
   ASSERT_TRUE(report.solve.usable) << report.solve.toString();
   ASSERT_TRUE(report.covariance_computed);
   ASSERT_TRUE(report.backscatter_estimated);
@@ -104,7 +105,7 @@ TEST(WaterEstimation, WarnsWhenEveryPointIsSeenFromOneGeometry) {
   const Truth truth;
   WaterEstimationOptions options;
   options.relative_noise = 0.02;
-  const WaterEstimationReport report = estimateWater(synthesize(truth, false, 11), truth.k, options);
+  const WaterEstimationReport report = estimateWater(synthesize(truth, false, 11), truth.k, truth.wavelengths_nm, options);
   bool named = false;
   for (const std::string& warning : report.water.warnings) {
     named = named || warning.find("does not determine c(λ)") != std::string::npos;
@@ -114,7 +115,7 @@ TEST(WaterEstimation, WarnsWhenEveryPointIsSeenFromOneGeometry) {
 
 TEST(WaterEstimation, RejectsAResponseOfTheWrongLength) {
   const Truth truth;
-  EXPECT_THROW(estimateWater(synthesize(truth, true, 3), {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(estimateWater(synthesize(truth, true, 3), {1.0, 2.0}, truth.wavelengths_nm), std::invalid_argument);
 }
 
 }  // namespace
