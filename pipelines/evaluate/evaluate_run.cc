@@ -15,7 +15,6 @@
 #include "pipelines/evaluate/ortho_metrics.h"
 #include "pipelines/evaluate/ortho_pixel_error.h"
 #include "pipelines/evaluate/reflectance_metrics.h"
-#include "pipelines/evaluate/reflectance_metrics.h"
 #include "pipelines/evaluate/trajectory_metrics.h"
 #include "pipelines/evaluate/view_distance.h"
 
@@ -170,16 +169,6 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
     metrics.ortho_patches = summary.substr(0, summary.find('\n'));
   }
   metrics.ortho_matches = ortho.matches;
-  // The reflectance product and the water estimate, when the run made them
-  // (the radiometry stage; docs/RADIOMETRY.md), spectra compared at the
-  // ortho's registered position.
-  const ReflectanceMetrics reflectance =
-      measureRunReflectance(inputs.run_folder, inputs.truth.reflectance_header_path,
-                            inputs.truth.calibration.water_attenuation_per_m, inputs.survey.origin, ortho.matches);
-  metrics.reflectance_sam_deg = reflectance.reflectance_sam_deg;
-  metrics.reflectance_rmse = reflectance.reflectance_rmse;
-  metrics.reflectance_gain_free_rmse = reflectance.reflectance_gain_free_rmse;
-  metrics.water_attenuation_rmse_per_m = reflectance.water_attenuation_rmse_per_m;
   // The reflectance product and the water estimate, when the run made them
   // (the radiometry stage; docs/RADIOMETRY.md), spectra compared at the
   // ortho's registered position.
