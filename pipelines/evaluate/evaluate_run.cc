@@ -22,9 +22,10 @@ namespace hsmap {
 
 namespace {
 
-// The contract's reflectance keys: null, saying why.
-void markNoReflectance(EvaluationMetrics& metrics) {
-  const MetricValue none = MetricValue::missing("this hsmap makes no reflectance product yet (radiance only)");
+// The contract's reflectance keys: null, saying why (the measurement, when
+// the run has a reflectance product, replaces them).
+void markNoReflectance(EvaluationMetrics& metrics, const std::string& why) {
+  const MetricValue none = MetricValue::missing(why);
   for (MetricValue* m : {&metrics.reflectance_sam_deg, &metrics.reflectance_rmse, &metrics.reflectance_gain_free_rmse,
                          &metrics.water_attenuation_rmse_per_m}) {
     *m = none;
@@ -67,7 +68,7 @@ EvaluationMetrics stackedMetrics(const EvaluationInputs& inputs) {
   measureUhiIntrinsics(inputs, metrics);
   const MetricValue no_rgb = MetricValue::missing(kStackedUsesNoRgbCamera);
   for (MetricValue* m : {&metrics.rgb_focal_error_rel, &metrics.rgb_cx_error_px, &metrics.rgb_cy_error_px}) *m = no_rgb;
-  markNoReflectance(metrics);
+  markNoReflectance(metrics, kStackedMakesNoReflectance);
   for (const StageRecord& stage : inputs.run.stages) metrics.timings_s.emplace_back(stage.name, stage.time_s);
   metrics.timings_s.emplace_back("total", inputs.run.total_time_s);
   metrics.peak_rss_mb = MetricValue::of(inputs.run.peak_rss_mb);
@@ -131,7 +132,7 @@ EvaluationMetrics evaluateRun(const EvaluationInputs& inputs) {
   const CalibrationErrors calibration =
       compareCalibration(inputs.calibration, inputs.survey.config.uhi.camera, inputs.truth.calibration);
   measureUhiIntrinsics(inputs, metrics);
-  markNoReflectance(metrics);
+  markNoReflectance(metrics, "not measured");
   metrics.extrinsic_rotation_error_deg = MetricValue::of(calibration.extrinsic_rotation_error_deg);
   metrics.extrinsic_translation_error_m =
       MetricValue::of(calibration.extrinsic_translation_error_m);

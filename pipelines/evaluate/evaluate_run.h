@@ -31,6 +31,8 @@ inline constexpr const char* kStackedHasNoPoses =
     "the stacked variant poses nothing: scan lines side by side, no map position";
 // Why its RGB intrinsics' errors are null.
 inline constexpr const char* kStackedUsesNoRgbCamera = "the stacked variant uses no RGB camera";
+inline constexpr const char* kStackedMakesNoReflectance =
+    "the stacked variant makes no reflectance product: its scan lines have no surface to place the lamps on";
 
 EvaluationMetrics evaluateRun(const EvaluationInputs& inputs);
 

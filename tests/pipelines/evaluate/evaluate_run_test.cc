@@ -199,7 +199,7 @@ TEST_F(EvaluateRunTest, AStackedRunHasEveryMetricNullWithTheReason) {
     if (key == "peak_rss_mb") continue;
     EXPECT_FALSE(metric.value.has_value() && key.rfind("uhi_focal", 0) != 0 && key.rfind("uhi_cx", 0) != 0) << key;
     if (key.rfind("reflectance", 0) == 0 || key == "water_attenuation_rmse_per_m") {
-      EXPECT_EQ(metric.reason, "this hsmap makes no reflectance product yet (radiance only)") << key;
+      EXPECT_EQ(metric.reason, kStackedMakesNoReflectance) << key;
     } else if (key.rfind("rgb_focal", 0) == 0 || key == "rgb_cx_error_px" || key == "rgb_cy_error_px") {
       EXPECT_EQ(metric.reason, kStackedUsesNoRgbCamera) << key;
     } else if (key == "uhi_focal_error_rel" || key == "uhi_cx_error_px") {
