@@ -14,17 +14,6 @@ namespace {
 
 using namespace georef_testing;
 
-PinholeRadtanParameters testCamera() {
-  PinholeRadtanParameters p;
-  p.width = 640;
-  p.height = 480;
-  p.fx = p.fy = 500.0;
-  p.cx = 320.0;
-  p.cy = 240.0;
-  p.distortion = {-0.05, 0.01, 0.0, 0.0, 0.0};
-  return p;
-}
-
 struct Scene {
   VisualMap map;                 // the start: truth moved by a small similarity, plus noise
   std::vector<SE3d> true_T_W_K;  // per keyframe

@@ -19,20 +19,9 @@ namespace {
 
 using namespace georef_testing;
 
-PinholeRadtanParameters trueCameraModel() {
-  PinholeRadtanParameters p;
-  p.width = 640;
-  p.height = 480;
-  p.fx = p.fy = 500.0;
-  p.cx = 320.0;
-  p.cy = 240.0;
-  p.distortion = {-0.05, 0.01, 0.0, 0.0, 0.0};
-  return p;
-}
-
 // survey.yaml's guess: f 1 % long, cx 3 px and cy 2 px off, k1 0.01 off.
 PinholeRadtanParameters guessedCameraModel() {
-  PinholeRadtanParameters p = trueCameraModel();
+  PinholeRadtanParameters p = testCamera();
   p.fx *= 1.01;
   p.fy *= 1.01;
   p.cx += 3.0;
@@ -63,7 +52,7 @@ struct Scene {
 // 10.3 m depth.
 Scene makeScene(const std::function<SE3d(double)>& body, double relief) {
   Scene scene;
-  const PinholeRadtanCamera camera(trueCameraModel());
+  const PinholeRadtanCamera camera(testCamera());
   std::mt19937 rng(23);
   std::normal_distribution<double> pixel_noise(0.0, 0.5);
   std::normal_distribution<double> unit(0.0, 1.0);
@@ -134,7 +123,7 @@ TEST(GeorefBundleIntrinsics, RecoversPerturbedRgbIntrinsicsWithinTheirStatedSigm
   ASSERT_TRUE(report.intrinsics);
   const RgbIntrinsicsEstimate& estimate = *report.intrinsics;
   ASSERT_TRUE(estimate.sigma_known) << estimate.covariance_error;
-  const std::array<double, 9> truth = rgbIntrinsicsOf(trueCameraModel());
+  const std::array<double, 9> truth = rgbIntrinsicsOf(testCamera());
   const std::array<double, 9> guess = rgbIntrinsicsOf(guessedCameraModel());
   const std::array<double, 9> found = rgbIntrinsicsOf(estimate.camera);
   const std::array<double, 9> prior = rgbIntrinsicsOf(statedSigma());

@@ -9,12 +9,25 @@
 #include <random>
 #include <vector>
 
+#include "core/geometry/camera_parameters.h"
 #include "core/geometry/se3.h"
 #include "core/geometry/sim3.h"
 #include "core/geometry/so3.h"
 #include "core/survey/ins_body_track.h"
 
 namespace hsmap::georef_testing {
+
+// The scene's RGB camera: 640 x 480, f 500 px, a little barrel distortion.
+inline PinholeRadtanParameters testCamera() {
+  PinholeRadtanParameters p;
+  p.width = 640;
+  p.height = 480;
+  p.fx = p.fy = 500.0;
+  p.cx = 320.0;
+  p.cy = 240.0;
+  p.distortion = {-0.05, 0.01, 0.0, 0.0, 0.0};
+  return p;
+}
 
 inline SE3d mountingT_B_C() {
   // Camera x to starboard (body y), looking down (body z), 0.5 m forward.
