@@ -60,6 +60,8 @@ PUBLIC_HEADERS = {
     "calibration": {"extrinsic_refinement.h", "extrinsic_refinement_options.h", "extrinsic_tie_point.h",
                     "extrinsic_from_tie_points.h", "run_tie_points.h", "strip_tie_points.h"},
     "joint": {"joint_problem.h", "joint_solution.h", "joint_spline.h"},
+    "radiometry": {"radiometric_observations.h", "water_estimation.h", "reflectance_ortho.h",
+                   "radiometry_files.h"},
     "evaluate": {"evaluate_run.h"},
     "report": {"run_report.h"},
     "simulate": {"simulate_survey.h", "simulation_config.h", "simulation_config_yaml.h"},

@@ -14,8 +14,8 @@
 #include "core/util/stage_timer.h"
 #include "pipelines/products/product_casting.h"
 #include "pipelines/products/stacked_products.h"
+#include "pipelines/radiometry/radiometry_files.h"
 #include "pipelines/radiometry/reflectance_ortho.h"
-#include "pipelines/run/radiometry_stage.h"
 
 namespace hsmap {
 

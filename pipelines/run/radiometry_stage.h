@@ -14,16 +14,10 @@
 // A survey without `lights` gets no estimate (and so radiance products only),
 // and the stage says why.
 
+#include "pipelines/radiometry/radiometry_files.h"
 #include "pipelines/run/stage_context.h"
 
 namespace hsmap {
-
-namespace radiometry_files {
-inline constexpr const char* folder = "radiometry";
-inline constexpr const char* water = "water.yaml";
-inline constexpr const char* summary = "summary.txt";
-inline constexpr const char* calibration = "calibration.yaml";
-}  // namespace radiometry_files
 
 void runRadiometryStage(const StageContext& context);
 
